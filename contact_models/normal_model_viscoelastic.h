@@ -1,0 +1,79 @@
+// `model viscoelastic`: linear spring-dashpot normal force with Pournin et
+// al. (2001) coefficients from contactDuration, coefficientRestitution and
+// coefficientRestitutionTangential (Eq. 3.20, 3.22-3.25). It also hands kt
+// and ct to the tangential model (stock `history` or `pournin`).
+#ifdef NORMAL_MODEL
+NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
+#else
+#ifndef NORMAL_MODEL_VISCOELASTIC_H_
+#define NORMAL_MODEL_VISCOELASTIC_H_
+
+#include "contact_models.h"
+#include "normal_model_base.h"
+#include "type_pair_table.h"
+
+namespace LIGGGHTS {
+namespace ContactModels {
+
+template<>
+class NormalModel<VISCOELASTIC> : public NormalModelBase
+{
+public:
+    NormalModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
+        : NormalModelBase(lmp, hsetup, c), limitForce(false), cmb(c)
+    {}
+
+    void registerSettings(Settings& settings)
+    {
+        settings.registerOnOff("limitForce", limitForce, false);
+    }
+
+    void postSettings(IContactHistorySetup*, ContactModelBase*) {}
+
+    void connectToProperties(PropertyRegistry& registry)
+    {
+        table.load(lmp, registry.max_type(), limitForce,
+                   cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic");
+    }
+
+    double stressStrainExponent() { return 1.0; }
+
+    inline void surfacesIntersect(SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
+    {
+        if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
+        const viscoelastic::Coefficients c =
+            viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), sidata.meff);
+        const double Fn = viscoelastic::normalForce(c, sidata.deltan, -sidata.vn, limitForce);
+
+        sidata.Fn = Fn;
+        sidata.kn = c.kn;
+        sidata.gamman = c.cn;
+        sidata.kt = c.kt;
+        sidata.gammat = c.ct;  // absolute damping, as `history` expects it
+
+        const double F = sidata.is_wall ? Fn * sidata.area_ratio : Fn;
+        for (int d = 0; d < 3; ++d) {
+            i_forces.delta_F[d] += F * sidata.en[d];
+            if (!sidata.is_wall) j_forces.delta_F[d] -= F * sidata.en[d];
+        }
+    }
+
+    void surfacesClose(SurfacesCloseData& scdata, ForceData&, ForceData&)
+    {
+        if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
+    }
+
+    void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
+    void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
+
+private:
+    bool limitForce;
+    ContactModelBase* cmb;
+    viscoelastic::TypePairTable table;
+};
+
+}  // namespace ContactModels
+}  // namespace LIGGGHTS
+
+#endif  // NORMAL_MODEL_VISCOELASTIC_H_
+#endif

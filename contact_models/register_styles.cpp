@@ -1,0 +1,151 @@
+// Adds `model viscoelastic` and `tangential pournin` to the contact-model
+// factories of an installed libliggghts when this library is loaded (linked
+// into our `liggghts` launcher, or LD_PRELOADed into the stock one).
+//
+// LIGGGHTS instantiates one pair style and one wall per model combination;
+// its generic fallback only knows the models compiled into it. So every
+// combination we support is instantiated here, and every other combination
+// that names one of our models gets a creator that stops with an ERROR
+// listing the supported ones.
+#include "fix_insert_stream.h"  // pair_gran_base.h uses it without including it
+
+#include <sstream>
+#include <string>
+
+#include "contact_models.h"
+#include "error.h"
+#include "fix_wall_gran_base.h"
+#include "granular_pair_style.h"
+#include "granular_wall.h"
+#include "pair_gran_base.h"
+
+namespace {
+
+using namespace LIGGGHTS;
+using namespace LIGGGHTS::ContactModels;
+
+struct Combination {
+    int tangential;
+    const char* tangentialName;
+};
+
+// `model viscoelastic` with cohesion off, rolling_friction off, surface default.
+const Combination kSupported[] = {
+    {TANGENTIAL_HISTORY, "history"},
+    {TANGENTIAL_POURNIN, "pournin"},
+    {TANGENTIAL_NO_HISTORY, "no_history"},
+};
+
+template<int T>
+using Style = GranStyle<VISCOELASTIC, T, COHESION_OFF, ROLLING_OFF, SURFACE_DEFAULT>;
+
+template<int T>
+PairStyles::IGranularPairStyle* createPair(LAMMPS_NS::LAMMPS* lmp, LAMMPS_NS::PairGran* parent, int64_t hash)
+{
+    return new PairStyles::Granular<ContactModel<Style<T> > >(lmp, parent, hash);
+}
+
+template<int T>
+Walls::IGranularWall* createWall(LAMMPS_NS::LAMMPS* lmp, LAMMPS_NS::FixWallGran* parent, int64_t hash)
+{
+    return new Walls::Granular<ContactModel<Style<T> > >(lmp, parent, hash);
+}
+
+std::string supportedList()
+{
+    std::ostringstream s;
+    s << "this build supports the viscoelastic law only as";
+    for (const Combination& c : kSupported)
+        s << " 'model viscoelastic tangential " << c.tangentialName << "'" << (&c == &kSupported[2] ? "" : ",");
+    s << " (cohesion, rolling_friction and surface models off / default)";
+    return s.str();
+}
+
+template<typename Parent, typename Interface>
+Interface* rejectCombination(LAMMPS_NS::LAMMPS* lmp, Parent*, int64_t)
+{
+    const std::string msg = "Unsupported granular model combination: " + supportedList();
+    lmp->error->all(FLERR, msg.c_str());
+    return NULL;
+}
+
+bool isSupported(int64_t hash)
+{
+    for (const Combination& c : kSupported)
+        if (hash == Utils::generate_gran_hashcode(VISCOELASTIC, c.tangential, COHESION_OFF, ROLLING_OFF, SURFACE_DEFAULT))
+            return true;
+    return false;
+}
+
+std::vector<int> ids(const char* kind)
+{
+    std::vector<int> v;
+    if (std::string(kind) == "normal") {
+        v.push_back(NORMAL_OFF);
+#define NORMAL_MODEL(ID, NAME, CONST) v.push_back(CONST);
+#include "style_normal_model.h"
+#undef NORMAL_MODEL
+    } else if (std::string(kind) == "tangential") {
+        v.push_back(TANGENTIAL_OFF);
+#define TANGENTIAL_MODEL(ID, NAME, CONST) v.push_back(CONST);
+#include "style_tangential_model.h"
+#undef TANGENTIAL_MODEL
+    } else if (std::string(kind) == "cohesion") {
+        v.push_back(COHESION_OFF);
+#define COHESION_MODEL(ID, NAME, CONST) v.push_back(CONST);
+#include "style_cohesion_model.h"
+#undef COHESION_MODEL
+    } else if (std::string(kind) == "rolling") {
+        v.push_back(ROLLING_OFF);
+#define ROLLING_MODEL(ID, NAME, CONST) v.push_back(CONST);
+#include "style_rolling_model.h"
+#undef ROLLING_MODEL
+    } else {
+#define SURFACE_MODEL(ID, NAME, CONST) v.push_back(CONST);
+#include "style_surface_model.h"
+#undef SURFACE_MODEL
+    }
+    return v;
+}
+
+struct Registrar {
+    Registrar()
+    {
+        ContactModels::Factory& models = ContactModels::Factory::instance();
+        models.addNormalModel("viscoelastic", VISCOELASTIC);
+        models.addTangentialModel("pournin", TANGENTIAL_POURNIN);
+
+        PairStyles::Factory& pairs = PairStyles::Factory::instance();
+        Walls::Factory& walls = Walls::Factory::instance();
+        add<TANGENTIAL_HISTORY>(pairs, walls);
+        add<TANGENTIAL_POURNIN>(pairs, walls);
+        add<TANGENTIAL_NO_HISTORY>(pairs, walls);
+
+        for (int n : ids("normal"))
+            for (int t : ids("tangential")) {
+                if (n != VISCOELASTIC && t != TANGENTIAL_POURNIN) continue;
+                for (int c : ids("cohesion"))
+                    for (int r : ids("rolling"))
+                        for (int s : ids("surface")) {
+                            const int64_t hash = Utils::generate_gran_hashcode(n, t, c, r, s);
+                            if (isSupported(hash)) continue;
+                            pairs.addStyle("gran", hash,
+                                           &rejectCombination<LAMMPS_NS::PairGran, PairStyles::IGranularPairStyle>);
+                            walls.addStyle("gran", hash,
+                                           &rejectCombination<LAMMPS_NS::FixWallGran, Walls::IGranularWall>);
+                        }
+            }
+    }
+
+    template<int T>
+    static void add(PairStyles::Factory& pairs, Walls::Factory& walls)
+    {
+        const int64_t hash = Style<T>::HASHCODE;
+        pairs.addStyle("gran", hash, &createPair<T>);
+        walls.addStyle("gran", hash, &createWall<T>);
+    }
+};
+
+const Registrar registrar;
+
+}  // namespace

@@ -1,0 +1,101 @@
+// `tangential pournin`: the thesis' own tangential law (Eq. 3.5, 3.18-3.21).
+// It differs from stock `history` in two ways: the Coulomb cap bounds the
+// total force kt xi + ct dxi/dt (history caps the elastic part and drops the
+// dashpot while sliding), and the tangential overlap is rotated with the
+// contact frame (history projects it, which shortens it). Needs
+// `model viscoelastic`, which supplies kt and ct.
+#ifdef TANGENTIAL_MODEL
+TANGENTIAL_MODEL(TANGENTIAL_POURNIN,pournin,20)
+#else
+#ifndef TANGENTIAL_MODEL_POURNIN_H_
+#define TANGENTIAL_MODEL_POURNIN_H_
+
+#include "contact_models.h"
+#include "tangential_model_base.h"
+#include "update.h"
+#include "core/viscoelastic.h"
+
+namespace LIGGGHTS {
+namespace ContactModels {
+
+template<>
+class TangentialModel<TANGENTIAL_POURNIN> : public TangentialModelBase
+{
+public:
+    TangentialModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
+        : TangentialModelBase(lmp, hsetup, c), coeffFrict(NULL)
+    {
+        // xi and the normal it is expressed in; both flip sign seen from j.
+        history_offset = hsetup->add_history_value("pournin_xi_x", "1");
+        hsetup->add_history_value("pournin_xi_y", "1");
+        hsetup->add_history_value("pournin_xi_z", "1");
+        hsetup->add_history_value("pournin_n_x", "1");
+        hsetup->add_history_value("pournin_n_y", "1");
+        hsetup->add_history_value("pournin_n_z", "1");
+    }
+
+    void registerSettings(Settings&) {}
+    void postSettings(IContactHistorySetup*, ContactModelBase*) {}
+
+    void connectToProperties(PropertyRegistry& registry)
+    {
+        registry.registerProperty("coeffFrict", &MODEL_PARAMS::createCoeffFrict);
+        registry.connect("coeffFrict", coeffFrict, "tangential_model pournin");
+    }
+
+    inline void surfacesIntersect(const SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
+    {
+        using viscoelastic::Vec3;
+        if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_TANGENTIAL_MODEL;
+
+        double* const h = &sidata.contact_history[history_offset];
+        viscoelastic::TangentialState state;
+        state.xi = Vec3(h[0], h[1], h[2]);
+        state.normal = Vec3(h[3], h[4], h[5]);
+        const Vec3 n(sidata.en[0], sidata.en[1], sidata.en[2]);
+        const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
+        const double limit = viscoelastic::frictionLimit(coeffFrict[sidata.itype][sidata.jtype], sidata.Fn);
+        const bool advance = sidata.computeflag && sidata.shearupdate;
+
+        const Vec3 Ft = viscoelastic::pourninTangentialForce(state, n, vt, sidata.kt, sidata.gammat,
+                                                             limit, update->dt, advance);
+        if (advance)
+            for (int d = 0; d < 3; ++d) {
+                h[d] = state.xi[d];
+                h[3 + d] = state.normal[d];
+            }
+
+        // Torque about each centre from the force at the contact point.
+        const Vec3 nxF = n.cross(Ft);
+        const double scale = sidata.is_wall ? sidata.area_ratio : 1.0;
+        for (int d = 0; d < 3; ++d) {
+            i_forces.delta_F[d] += scale * Ft[d];
+            i_forces.delta_torque[d] -= scale * sidata.cri * nxF[d];
+            if (!sidata.is_wall) {
+                j_forces.delta_F[d] -= Ft[d];
+                j_forces.delta_torque[d] -= sidata.crj * nxF[d];
+            }
+        }
+    }
+
+    inline void surfacesClose(SurfacesCloseData& scdata, ForceData&, ForceData&)
+    {
+        if (scdata.contact_flags) *scdata.contact_flags &= ~CONTACT_TANGENTIAL_MODEL;
+        if (!scdata.contact_history) return;
+        double* const h = &scdata.contact_history[history_offset];
+        for (int d = 0; d < 6; ++d) h[d] = 0.0;
+    }
+
+    void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
+    void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
+
+private:
+    double** coeffFrict;
+    int history_offset;
+};
+
+}  // namespace ContactModels
+}  // namespace LIGGGHTS
+
+#endif  // TANGENTIAL_MODEL_POURNIN_H_
+#endif
