@@ -71,11 +71,13 @@ inline double normalForce(const Coefficients& c, double overlap, double overlapR
     return (limitForce && f < 0.0) ? 0.0 : f;
 }
 
-// Friction threshold of Eq. 3.18. A tensile (attractive) normal force
-// transmits no friction.
+// Friction threshold of Eq. 3.18. Without limitForce the end of a contact
+// is attractive; bounding friction by |Fn| there (as LIGGGHTS' history model
+// does) lets a sticking contact finish its tangential half-oscillation, so
+// the nominal et is achieved exactly like en.
 inline double frictionLimit(double mu, double normalForce)
 {
-    return mu * std::max(normalForce, 0.0);
+    return mu * std::fabs(normalForce);
 }
 
 // Rotates v by the smallest rotation taking unit vector `from` to unit vector

@@ -1,0 +1,230 @@
+#include "liggghts_run.h"
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace impact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string shellQuote(const std::string& s)
+{
+    std::string q = "'";
+    for (char ch : s) q += (ch == '\'') ? std::string("'\\''") : std::string(1, ch);
+    return q + "'";
+}
+
+std::string num(double v)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+// Gap that makes the first overlap occur `phase` of a step after step
+// `steps`, so runs at different dt start their contact at the same phase.
+double initialGap(const Case& c, const RunOptions& o, int steps)
+{
+    return (steps + o.phase - 1.0) * c.normalSpeed * c.dt;
+}
+
+constexpr int kApproachSteps = 3;
+
+std::string typePair(const char* name, double v)
+{
+    return "fix " + std::string(name) + " all property/global " + name + " peratomtypepair 2 " + num(v) +
+           " " + num(v) + " " + num(v) + " " + num(v) + "\n";
+}
+
+std::string modelArgs(const Case& c)
+{
+    return "model viscoelastic tangential " + name(c.tangential);
+}
+
+// wall/gran reads model settings only after the wall geometry
+std::string modelSettings(const Case& c)
+{
+    return std::string("limitForce ") + (c.limitForce ? "on" : "off");
+}
+
+// A square of two triangles in the plane x = 0, normal +x.
+void writePlaneStl(const fs::path& file, double half)
+{
+    std::ofstream f(file);
+    const std::string h = num(half), m = num(-half);
+    auto facet = [&](const std::string& a, const std::string& b, const std::string& cc) {
+        f << "facet normal 1 0 0\n outer loop\n  vertex " << a << "\n  vertex " << b << "\n  vertex " << cc
+          << "\n endloop\nendfacet\n";
+    };
+    f << "solid plane\n";
+    facet("0 " + m + " " + m, "0 " + h + " " + m, "0 " + h + " " + h);
+    facet("0 " + m + " " + m, "0 " + h + " " + h, "0 " + m + " " + h);
+    f << "endsolid plane\n";
+}
+
+std::string setup(const Case& c, const RunOptions& o)
+{
+    const double L = 10.0 * std::max(c.radius1, c.radius2);
+    std::ostringstream s;
+    s << "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n"
+         "communicate single vel yes\nunits si\n";
+    if (o.ranks > 1) s << "processors " << o.ranks << " 1 1\n";
+    return s.str() + "region box block " + num(-L) + " " + num(L) + " " + num(-L) + " " + num(L) + " " +
+           num(-L) + " " + num(L) + " units box\n";
+}
+
+std::string physics(const Case& c)
+{
+    std::ostringstream s;
+    s << "neighbor " << num(0.5 * std::min(c.radius1, c.radius2)) << " bin\nneigh_modify delay 0\n";
+    s << typePair("contactDuration", c.params.tc) << typePair("coefficientRestitution", c.params.en)
+      << typePair("coefficientRestitutionTangential", c.params.et)
+      << typePair("coefficientFriction", c.params.mu);
+    s << "pair_style gran " << modelArgs(c) << " " << modelSettings(c) << "\npair_coeff * *\n";
+    s << "timestep " << num(c.dt) << "\n";
+    if (c.geometry == Geometry::Wall)
+        s << "fix wall all wall/gran " << modelArgs(c) << " primitive type 2 xplane 0.0 " << modelSettings(c) << "\n";
+    if (c.geometry == Geometry::MeshWall)
+        s << "fix plane all mesh/surface file plane.stl type 2\n"
+          << "fix wall all wall/gran " << modelArgs(c) << " mesh n_meshes 1 meshes plane " << modelSettings(c) << "\n";
+    s << "fix integr all nve/sphere\n";
+    s << "dump traj all custom 1 traj.dump id x y z vx vy vz omegax omegay omegaz\n"
+         "dump_modify traj sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n";
+    s << "thermo_style custom step atoms\nthermo 1000\n";
+    return s.str();
+}
+
+int totalSteps(const Case& c)
+{
+    // approach, contact (a little more than tc with limitForce), and a margin
+    return kApproachSteps + static_cast<int>(std::ceil(2.0 * c.params.tc / c.dt)) + 5;
+}
+
+void run(const std::string& command, const fs::path& dir, const std::string& what)
+{
+    const std::string full = "cd " + shellQuote(dir.string()) + " && " + command + " > " + what + ".out 2>&1";
+    const int status = std::system(full.c_str());
+    if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::ifstream out(dir / (what + ".out"));
+        std::string text((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
+        if (text.size() > 3000) text = "..." + text.substr(text.size() - 3000);
+        throw std::runtime_error("liggghts failed (" + command + ") in " + dir.string() + ":\n" + text);
+    }
+}
+
+std::string launcher(const RunOptions& o)
+{
+    if (o.ranks <= 1) return shellQuote(o.liggghts);
+    return "mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(o.ranks) + " " +
+           shellQuote(o.liggghts);
+}
+
+std::vector<Snapshot> readDump(const fs::path& file, const Case& c)
+{
+    std::ifstream f(file);
+    if (!f) throw std::runtime_error("no dump file " + file.string());
+    std::vector<Snapshot> frames;
+    std::string line;
+    long step = 0;
+    while (std::getline(f, line)) {
+        if (line.rfind("ITEM: TIMESTEP", 0) == 0) {
+            f >> step;
+        } else if (line.rfind("ITEM: ATOMS", 0) == 0) {
+            Snapshot s;
+            s.time = step * c.dt;
+            const int atoms = c.isWall() ? 1 : 2;
+            for (int a = 0; a < atoms; ++a) {
+                int id;
+                double v[9];
+                f >> id;
+                for (double& x : v) f >> x;
+                Vec3 x(v[0], v[1], v[2]), vel(v[3], v[4], v[5]), w(v[6], v[7], v[8]);
+                if (id == 1) s.x1 = x, s.v1 = vel, s.w1 = w;
+                else s.x2 = x, s.v2 = vel, s.w2 = w;
+            }
+            if (!f) throw std::runtime_error("truncated dump " + file.string());
+            frames.push_back(s);
+        }
+    }
+    return frames;
+}
+
+}  // namespace
+
+int stepsToContact(const Case&, const RunOptions&) { return kApproachSteps; }
+
+std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra)
+{
+    const Snapshot s = initialState(c, initialGap(c, o, kApproachSteps));
+    std::ostringstream in;
+    in << setup(c, o) << "create_box 2 box\n";
+    auto atom = [&](int id, const Vec3& x, const Vec3& v, const Vec3& w, double r, double rho) {
+        in << "create_atoms 1 single " << num(x.x()) << " " << num(x.y()) << " " << num(x.z()) << " units box\n"
+           << "set atom " << id << " diameter " << num(2 * r) << " density " << num(rho) << " vx " << num(v.x())
+           << " vy " << num(v.y()) << " vz " << num(v.z()) << " omegax " << num(w.x()) << " omegay "
+           << num(w.y()) << " omegaz " << num(w.z()) << "\n";
+    };
+    atom(1, s.x1, s.v1, s.w1, c.radius1, c.density1);
+    if (!c.isWall()) atom(2, s.x2, s.v2, s.w2, c.radius2, c.density2);
+    in << physics(c) << extra;
+    return in.str();
+}
+
+Trajectory runLiggghts(const Case& c, const RunOptions& o)
+{
+    const fs::path dir = o.workdir.empty() ? fs::temp_directory_path() / "collide" : fs::path(o.workdir);
+    fs::create_directories(dir);
+    fs::remove(dir / "traj.dump");
+    if (c.geometry == Geometry::MeshWall) writePlaneStl(dir / "plane.stl", 5.0 * c.radius1);
+
+    const int steps = totalSteps(c);
+    if (o.restartAfterContactSteps < 0) {
+        std::ofstream(dir / "in.collision") << collisionInput(c, o, "run " + std::to_string(steps) + "\n");
+        run(launcher(o) + " -in in.collision -log log.collision", dir, "collision");
+        return {readDump(dir / "traj.dump", c)};
+    }
+
+    // Interrupted run: stop mid-contact, write a restart, continue from it.
+    const int first = kApproachSteps + o.restartAfterContactSteps;
+    std::ofstream(dir / "in.first") << collisionInput(
+        c, o, "run " + std::to_string(first) + "\nwrite_restart collision.restart\n");
+    run(launcher(o) + " -in in.first -log log.first", dir, "first");
+    std::vector<Snapshot> frames = readDump(dir / "traj.dump", c);
+
+    std::ostringstream second;
+    second << setup(c, o) << "read_restart collision.restart\n" << physics(c);
+    second << "run " << steps - first << "\n";
+    std::ofstream(dir / "in.second") << second.str();
+    fs::rename(dir / "traj.dump", dir / "traj.first.dump");
+    run(launcher(o) + " -in in.second -log log.second", dir, "second");
+    std::vector<Snapshot> rest = readDump(dir / "traj.dump", c);
+    // the continuation's first frame repeats the restart state
+    if (!rest.empty()) rest.erase(rest.begin());
+    frames.insert(frames.end(), rest.begin(), rest.end());
+    return {frames};
+}
+
+Outcome measure(const Case& c, const Trajectory& t)
+{
+    if (t.frames.size() < 3) throw std::runtime_error("trajectory too short");
+    int touching = 0;
+    double peak = 0.0;
+    for (const Snapshot& s : t.frames) {
+        const double overlap = kinematics(c, s).overlap;
+        if (overlap > 0.0) ++touching, peak = std::max(peak, overlap);
+    }
+    if (kinematics(c, t.frames.back()).overlap > 0.0)
+        throw std::runtime_error("the bodies were still in contact at the end of the run");
+    return measure(c, t.frames.front(), t.frames.back(), touching * c.dt, peak);
+}
+
+}  // namespace impact

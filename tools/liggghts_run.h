@@ -1,0 +1,40 @@
+// Runs a two-body impact in LIGGGHTS: writes the input script (and a plane
+// STL for mesh walls), launches liggghts serially or under mpirun, and reads
+// the per-step dump back into snapshots.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "impact.h"
+
+namespace impact {
+
+struct RunOptions {
+    std::string liggghts = "liggghts";  // executable (our launcher, or the stock one with LD_PRELOAD)
+    int ranks = 1;                      // > 1 runs `mpirun -np ranks`, split across the contact
+    std::string workdir;                // where inputs and outputs go (created)
+    double phase = 0.5;                 // fraction of a step at which the first overlap occurs
+    // Restart check: write a restart file this many steps into the
+    // contact, then finish the run from it in a second invocation.
+    int restartAfterContactSteps = -1;
+};
+
+// The LIGGGHTS input for a case.
+std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra = "");
+
+struct Trajectory {
+    std::vector<Snapshot> frames;  // one per step, first frame before contact
+};
+
+// Runs LIGGGHTS; throws std::runtime_error with the tail of its output on failure.
+Trajectory runLiggghts(const Case& c, const RunOptions& o);
+
+// Outcome measured from a LIGGGHTS trajectory, with the same definitions as
+// the reference (duration = steps with positive overlap times dt).
+Outcome measure(const Case& c, const Trajectory& t);
+
+// Number of steps from the start of the run to the first overlapping step.
+int stepsToContact(const Case& c, const RunOptions& o);
+
+}  // namespace impact
