@@ -41,31 +41,27 @@ std::string format(const char* fmt, ...)
 }
 
 // Fills values[i*stride+j] for 1 <= i,j <= maxType from a peratomtypepair
-// property; a missing property is reported by LIGGGHTS itself, naming it.
+// property, after checking every entry the property defines (also for types
+// not in use yet). A missing property, a too small or an asymmetric matrix
+// are reported by LIGGGHTS itself, naming the property.
 void readProperty(LAMMPS_NS::LAMMPS* lmp, const PropertySpec& spec, int maxType, const char* caller,
                   std::vector<double>& values)
 {
     auto* fix = static_cast<LAMMPS_NS::FixPropertyGlobal*>(lmp->modify->find_fix_property(
         spec.name, "property/global", "peratomtypepair", maxType, maxType, caller));
-    const int stride = maxType + 1;
-    values.assign(stride * stride, 0.0);
-    for (int i = 1; i <= maxType; ++i)
-        for (int j = 1; j <= maxType; ++j) {
+    const int defined = fix->size_array_rows;
+    for (int i = 1; i <= defined; ++i)
+        for (int j = 1; j <= defined; ++j) {
             const double v = fix->compute_array(i - 1, j - 1);
             if (!std::isfinite(v) || !spec.valid(v))
                 lmp->error->all(FLERR, format("%s: %s of type pair (%d,%d) is %g; it must be %s",
                                               caller, spec.name, i, j, v, spec.range)
                                            .c_str());
-            values[i * stride + j] = v;
         }
+    const int stride = maxType + 1;
+    values.assign(stride * stride, 0.0);
     for (int i = 1; i <= maxType; ++i)
-        for (int j = i + 1; j <= maxType; ++j)
-            if (values[i * stride + j] != values[j * stride + i])
-                lmp->error->all(FLERR, format("%s: %s is not symmetric: type pair (%d,%d) has %g "
-                                              "but (%d,%d) has %g",
-                                              caller, spec.name, i, j, values[i * stride + j], j,
-                                              i, values[j * stride + i])
-                                           .c_str());
+        for (int j = 1; j <= maxType; ++j) values[i * stride + j] = fix->compute_array(i - 1, j - 1);
 }
 
 // Above this predicted relative restitution error the run is warned.

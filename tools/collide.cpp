@@ -58,6 +58,7 @@ void addCaseOptions(CLI::App* app, Options& o)
     app->add_option("--vt", o.c.tangentialSpeed, "tangential speed of 1 relative to 2 [m/s]")->capture_default_str();
     app->add_option("--spin", o.spin, "spin of sphere 1 about z [rad/s]")->capture_default_str();
     app->add_option("--liggghts", o.run.liggghts, "liggghts executable")->capture_default_str();
+    app->add_option("--preload", o.run.preload, "library to LD_PRELOAD into a stock liggghts");
     app->add_option("--np", o.run.ranks, "MPI ranks")->check(CLI::PositiveNumber)->capture_default_str();
     app->add_option("--workdir", o.run.workdir, "directory for LIGGGHTS inputs and outputs");
     app->add_option("--csv", o.csv, "write results as CSV");

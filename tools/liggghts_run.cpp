@@ -123,9 +123,10 @@ void run(const std::string& command, const fs::path& dir, const std::string& wha
 
 std::string launcher(const RunOptions& o)
 {
-    if (o.ranks <= 1) return shellQuote(o.liggghts);
-    return "mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(o.ranks) + " " +
-           shellQuote(o.liggghts);
+    const std::string env = o.preload.empty() ? "" : "LD_PRELOAD=" + shellQuote(o.preload) + " ";
+    if (o.ranks <= 1) return env + shellQuote(o.liggghts);
+    return env + "mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(o.ranks) +
+           (o.preload.empty() ? "" : " -x LD_PRELOAD") + " " + shellQuote(o.liggghts);
 }
 
 std::vector<Snapshot> readDump(const fs::path& file, const Case& c)
@@ -161,6 +162,16 @@ std::vector<Snapshot> readDump(const fs::path& file, const Case& c)
 }  // namespace
 
 int stepsToContact(const Case&, const RunOptions&) { return kApproachSteps; }
+
+std::string runScript(const std::string& script, const RunOptions& o)
+{
+    const fs::path dir = o.workdir.empty() ? fs::temp_directory_path() / "collide" : fs::path(o.workdir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "in.script") << script;
+    run(launcher(o) + " -in in.script -log log.script", dir, "script");
+    std::ifstream out(dir / "script.out");
+    return std::string((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
+}
 
 std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra)
 {
@@ -215,16 +226,22 @@ Trajectory runLiggghts(const Case& c, const RunOptions& o)
 
 Outcome measure(const Case& c, const Trajectory& t)
 {
+    // Normal and tangential directions turn with the line of centres even
+    // after separation, so the outcome is read at the first frame after
+    // the contact (as the reference does), not at the end of the run.
     if (t.frames.size() < 3) throw std::runtime_error("trajectory too short");
     int touching = 0;
     double peak = 0.0;
-    for (const Snapshot& s : t.frames) {
-        const double overlap = kinematics(c, s).overlap;
+    size_t before = 0, after = 0;
+    for (size_t i = 0; i < t.frames.size() && after == 0; ++i) {
+        const double overlap = kinematics(c, t.frames[i]).overlap;
         if (overlap > 0.0) ++touching, peak = std::max(peak, overlap);
+        else if (touching == 0) before = i;
+        else after = i;
     }
-    if (kinematics(c, t.frames.back()).overlap > 0.0)
-        throw std::runtime_error("the bodies were still in contact at the end of the run");
-    return measure(c, t.frames.front(), t.frames.back(), touching * c.dt, peak);
+    if (touching == 0) throw std::runtime_error("the bodies never touched");
+    if (after == 0) throw std::runtime_error("the bodies were still in contact at the end of the run");
+    return measure(c, t.frames[before], t.frames[after], touching * c.dt, peak);
 }
 
 }  // namespace impact

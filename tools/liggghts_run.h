@@ -12,6 +12,7 @@ namespace impact {
 
 struct RunOptions {
     std::string liggghts = "liggghts";  // executable (our launcher, or the stock one with LD_PRELOAD)
+    std::string preload;                // library to LD_PRELOAD (for the stock /usr/bin/liggghts)
     int ranks = 1;                      // > 1 runs `mpirun -np ranks`, split across the contact
     std::string workdir;                // where inputs and outputs go (created)
     double phase = 0.5;                 // fraction of a step at which the first overlap occurs
@@ -33,6 +34,10 @@ Trajectory runLiggghts(const Case& c, const RunOptions& o);
 // Outcome measured from a LIGGGHTS trajectory, with the same definitions as
 // the reference (duration = steps with positive overlap times dt).
 Outcome measure(const Case& c, const Trajectory& t);
+
+// Runs an arbitrary input script in o.workdir and returns LIGGGHTS' output;
+// throws std::runtime_error carrying the output's tail if LIGGGHTS fails.
+std::string runScript(const std::string& script, const RunOptions& o);
 
 // Number of steps from the start of the run to the first overlapping step.
 int stepsToContact(const Case& c, const RunOptions& o);

@@ -174,34 +174,44 @@ inline double continuousRestitution(double tc, double en, bool limitForce)
 struct DiscreteCollision {
     double restitution;  // averaged over the phase at which contact starts
     double duration;     // [s], averaged likewise (steps with overlap > 0)
+    double peakOverlap;  // largest sampled overlap per unit approach speed [s]
 };
 
 // Integrates the normal relative motion of one binary contact exactly as
-// LIGGGHTS does (see above), starting the first overlapping step at `phases`
-// evenly spread fractions of a step, and averages. Linear law: the outcome
-// does not depend on the impact speed or the mass.
-inline DiscreteCollision discreteCollision(double tc, double en, double dt, bool limitForce,
-                                           int phases = 32)
+// LIGGGHTS does (see above); the first overlapping step has overlap
+// phase * v0 * dt, phase in (0, 1]. Linear law: the outcome does not depend
+// on the impact speed or the mass.
+inline DiscreteCollision discreteCollisionAtPhase(double tc, double en, double dt, bool limitForce,
+                                                  double phase)
 {
     const UnitCoefficients u = pourninUnitCoefficients(tc, en, 1.0);
     const Coefficients c{u.kn, u.cn, 0.0, 0.0};  // meff = 1
-    const double v0 = 1.0;
     const int maxSteps = static_cast<int>(50.0 * tc / dt) + 100;
-    double sumE = 0.0, sumT = 0.0;
-    for (int p = 0; p < phases; ++p) {
-        // x: overlap, v: overlap rate at the half step (constant before contact)
-        double x = (p + 0.5) / phases * v0 * dt;
-        double v = v0;
-        int steps = 0;
-        while (x > 0.0 && steps < maxSteps) {
-            v -= dt * normalForce(c, x, v, limitForce);
-            x += dt * v;
-            ++steps;
-        }
-        sumE += -v / v0;
-        sumT += steps * dt;
+    double x = phase * dt;  // overlap; v0 = 1
+    double v = 1.0;         // overlap rate at the half step (constant before contact)
+    int steps = 0;
+    double peak = x;
+    while (x > 0.0 && steps < maxSteps) {
+        v -= dt * normalForce(c, x, v, limitForce);
+        x += dt * v;
+        peak = std::max(peak, x);
+        ++steps;
     }
-    return {sumE / phases, sumT / phases};
+    return {-v, steps * dt, peak};
+}
+
+// The same, averaged over `phases` evenly spread start phases.
+inline DiscreteCollision discreteCollision(double tc, double en, double dt, bool limitForce,
+                                           int phases = 32)
+{
+    DiscreteCollision mean{0.0, 0.0, 0.0};
+    for (int p = 0; p < phases; ++p) {
+        const DiscreteCollision d = discreteCollisionAtPhase(tc, en, dt, limitForce, (p + 0.5) / phases);
+        mean.restitution += d.restitution / phases;
+        mean.duration += d.duration / phases;
+        mean.peakOverlap += d.peakOverlap / phases;
+    }
+    return mean;
 }
 
 }  // namespace viscoelastic
