@@ -84,13 +84,14 @@ Outcome runAveraged(const Options& o, int phases)
     return sum;
 }
 
-std::string describe(const Case& c)
+std::string describe(const Case& c, bool withVelocity = true, bool withDt = true)
 {
     std::ostringstream s;
     s << name(c.geometry) << ", tangential " << name(c.tangential) << ", limitForce "
       << (c.limitForce ? "on" : "off") << ", tc " << c.params.tc << " s, en " << c.params.en << ", et "
-      << c.params.et << ", mu " << c.params.mu << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed
-      << " m/s, tc/dt " << c.params.tc / c.dt;
+      << c.params.et << ", mu " << c.params.mu;
+    if (withVelocity) s << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed << " m/s";
+    if (withDt) s << ", tc/dt " << c.params.tc / c.dt;
     return s.str();
 }
 
@@ -161,11 +162,15 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
         const Outcome lig = runAveraged(o, o.phases);
         const double eErr = relErr(lig.restitution, ref.outcome.restitution);
         const double tErr = relErr(lig.tangentialRestitution, ref.outcome.tangentialRestitution);
-        // the normal recurrence is mass-independent: valid for every geometry
+        // the normal recurrence is mass-independent: valid for every geometry;
+        // same start phases as the LIGGGHTS runs
         const double predicted =
-            viscoelastic::discreteCollision(o.c.params.tc, o.c.params.en, o.c.dt, o.c.limitForce).restitution;
-        std::printf("%8.1f %12.6f %+11.3f%% %12.6f %+11.2f st %+13.3f%%\n", ratio, lig.restitution, 100 * eErr,
-                    predicted, (lig.duration - ref.outcome.duration) / o.c.dt, oblique ? 100 * tErr : 0.0);
+            viscoelastic::discreteCollision(o.c.params.tc, o.c.params.en, o.c.dt, o.c.limitForce, o.phases)
+                .restitution;
+        std::printf("%8.1f %12.6f %+11.3f%% %12.6f %+11.2f st", ratio, lig.restitution, 100 * eErr, predicted,
+                    (lig.duration - ref.outcome.duration) / o.c.dt);
+        if (oblique) std::printf(" %+13.3f%%", 100 * tErr);
+        std::printf("\n");
         csv << ratio << "," << o.c.dt << "," << lig.restitution << "," << eErr << "," << predicted << ","
             << (lig.duration - ref.outcome.duration) / o.c.dt << ","
             << relErr(lig.duration, ref.outcome.duration) << "," << lig.tangentialRestitution << "," << tErr
@@ -190,7 +195,7 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
         std::ostringstream gp;
         gp << "set terminal pngcairo size 900,600\nset output '" << o.png << "'\nset datafile separator ','\n"
            << "set logscale xy\nset xlabel 'tc / dt'\nset ylabel '|relative error|'\nset grid\n"
-           << "set title \"" << describe(o.c) << "\" font ',9'\nset key top right\n"
+           << "set title \"" << describe(o.c, true, false) << "\" font ',9'\nset key top right\n"
            << "plot '" << csvFile << "' every ::1 using 1:(abs($4)) with linespoints lw 2 title 'restitution (LIGGGHTS)', "
            << "'' every ::1 using 1:(abs($5/" << ref.outcome.restitution
            << "-1)) with lines dt 2 title 'restitution (predicted recurrence)', "
@@ -230,16 +235,28 @@ int runSweepAngle(Options& o, const std::vector<double>& angles, double speed)
     const std::string csvFile = o.csv.empty() ? "sweep_angle.csv" : o.csv;
     std::ofstream(csvFile) << csv.str();
     if (!o.png.empty()) {
+        // the reference is cheap: draw it on a 1 degree grid
+        const std::string fineFile = csvFile + ".reference.csv";
+        std::ofstream fine(fineFile);
+        fine << "angle,tangential_restitution,spin,rebound_angle\n";
+        for (double a = std::max(1.0, angles.front()); a <= std::min(89.0, angles.back()); a += 1.0) {
+            Case c = o.c;
+            c.normalSpeed = speed * std::cos(a * viscoelastic::kPi / 180.0);
+            c.tangentialSpeed = speed * std::sin(a * viscoelastic::kPi / 180.0);
+            const Outcome r = reference(c).outcome;
+            fine << a << "," << r.tangentialRestitution << "," << r.spin1 << "," << r.reboundAngle << "\n";
+        }
+        fine.close();
         std::ostringstream gp;
         gp << "set terminal pngcairo size 1500,500\nset output '" << o.png << "'\nset datafile separator ','\n"
-           << "set multiplot layout 1,3 title \"" << describe(o.c) << ", |v| = " << speed
-           << " m/s\" font ',10'\nset grid\nset xlabel 'incidence angle [deg]'\nset key bottom right\n";
+           << "set multiplot layout 1,3 title \"" << describe(o.c, false) << ", |v| = " << speed
+           << " m/s\" font ',10'\nset grid\nset xlabel 'incidence angle from the normal [deg]'\nset key top center\n";
         const char* panels[][3] = {{"tangential restitution", "2", "3"},
-                                   {"rebound spin [rad/s]", "4", "5"},
-                                   {"rebound angle [deg]", "6", "7"}};
+                                   {"rebound spin [rad/s]", "3", "5"},
+                                   {"rebound angle [deg]", "4", "7"}};
         for (auto& p : panels)
-            gp << "set ylabel '" << p[0] << "'\nplot '" << csvFile << "' every ::1 using 1:" << p[1]
-               << " with lines lw 2 title 'reference', '' every ::1 using 1:" << p[2]
+            gp << "set ylabel '" << p[0] << "'\nplot '" << fineFile << "' every ::1 using 1:" << p[1]
+               << " with lines lw 2 title 'reference', '" << csvFile << "' every ::1 using 1:" << p[2]
                << " with points pt 7 ps 1.3 title 'LIGGGHTS'\n";
         gp << "unset multiplot\n";
         gnuplot(gp.str());

@@ -150,9 +150,13 @@ struct Law {
             if (sliding) f *= limit / f.norm();
             return f;
         }
+        // After the Coulomb switch the spring sits exactly on the cap. That is
+        // still sliding: history's dashpot, unbounded while sticking, must not
+        // come back for a round-off (LIGGGHTS advances the spring before it
+        // tests, so it never sees the boundary).
         const Vec3 elastic = -k.kt * xi;
         const double limit = c.params.mu * std::fabs(Fn);
-        sliding = elastic.norm() > limit;
+        sliding = elastic.norm() > 0.0 && elastic.norm() >= limit * (1.0 - 1e-9);
         if (sliding) return elastic.norm() > 0.0 ? Vec3(elastic * (limit / elastic.norm())) : Vec3::Zero();
         return elastic - k.ct * vt;
     }
