@@ -55,8 +55,11 @@ std::string supportedList()
 {
     std::ostringstream s;
     s << "this build supports the viscoelastic law only as";
-    for (const Combination& c : kSupported)
-        s << " 'model viscoelastic tangential " << c.tangentialName << "'" << (&c == &kSupported[2] ? "" : ",");
+    const char* separator = " ";
+    for (const Combination& c : kSupported) {
+        s << separator << "'model viscoelastic tangential " << c.tangentialName << "'";
+        separator = ", ";
+    }
     s << " (cohesion, rolling_friction and surface models off / default)";
     return s.str();
 }

@@ -183,23 +183,26 @@ TEST(Oblique, GrossSlidingFollowsWalton)
     }
 }
 
-// A collision across the boundary of two MPI subdomains: forces and history
+// A collision across the boundary of two MPI subdomains (the cut is at
+// x = 0: between the two spheres, or on the wall plane): forces and history
 // are exchanged through ghosts, so the run must match the serial one to
 // round-off (1e-12 m/s on velocities of order 1 m/s).
 TEST(Parallel, TwoRanksMatchSerialAcrossSubdomainBoundary)
 {
-    for (Tangential t : {Tangential::Pournin, Tangential::History}) {
-        Case c = headOn(Geometry::Pair, false);
-        c.tangential = t;
-        c.tangentialSpeed = 0.4;
-        c.spin1 = Vec3(0, 0, 200.0);
-        RunOptions two = options("mpi");
-        two.ranks = 2;
-        const Trajectory serial = runLiggghts(c, options("serial"));
-        const Trajectory parallel = runLiggghts(c, two);
-        EXPECT_LT(maxVelocityDifference(c, serial, parallel), 1e-12) << name(t);
-        EXPECT_NE(serial.frames.front().x1.x() > 0, serial.frames.front().x2.x() > 0);  // one sphere per side
-    }
+    for (Geometry g : {Geometry::Pair, Geometry::Wall, Geometry::MeshWall})
+        for (Tangential t : {Tangential::Pournin, Tangential::History}) {
+            Case c = headOn(g, false);
+            c.tangential = t;
+            c.tangentialSpeed = 0.4;
+            c.spin1 = Vec3(0, 0, 200.0);
+            RunOptions two = options("mpi");
+            two.ranks = 2;
+            const Trajectory serial = runLiggghts(c, options("serial"));
+            const Trajectory parallel = runLiggghts(c, two);
+            EXPECT_LT(maxVelocityDifference(c, serial, parallel), 1e-12) << name(g) << " " << name(t);
+            if (g == Geometry::Pair)  // one sphere on each side of the cut
+                EXPECT_NE(serial.frames.front().x1.x() > 0, serial.frames.front().x2.x() > 0);
+        }
 }
 
 // Restart files carry the contact history: stopping mid-contact and

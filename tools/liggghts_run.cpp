@@ -161,8 +161,6 @@ std::vector<Snapshot> readDump(const fs::path& file, const Case& c)
 
 }  // namespace
 
-int stepsToContact(const Case&, const RunOptions&) { return kApproachSteps; }
-
 std::string runScript(const std::string& script, const RunOptions& o)
 {
     const fs::path dir = o.workdir.empty() ? fs::temp_directory_path() / "collide" : fs::path(o.workdir);

@@ -39,7 +39,4 @@ Outcome measure(const Case& c, const Trajectory& t);
 // throws std::runtime_error carrying the output's tail if LIGGGHTS fails.
 std::string runScript(const std::string& script, const RunOptions& o);
 
-// Number of steps from the start of the run to the first overlapping step.
-int stepsToContact(const Case& c, const RunOptions& o);
-
 }  // namespace impact
