@@ -20,12 +20,15 @@ class NormalModel<VISCOELASTIC> : public NormalModelBase
 {
 public:
     NormalModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
-        : NormalModelBase(lmp, hsetup, c), limitForce(false), cmb(c)
+        : NormalModelBase(lmp, hsetup, c), limitForce(false), wallMassAsParticle(false), cmb(c)
     {}
 
     void registerSettings(Settings& settings)
     {
         settings.registerOnOff("limitForce", limitForce, false);
+        // YADE gives a mass-less facet the mass of the body it touches, so a
+        // sphere-wall contact has meff = m/2 there (off: meff = m).
+        settings.registerOnOff("wallMassAsParticle", wallMassAsParticle, false);
     }
 
     void postSettings(IContactHistorySetup*, ContactModelBase*) {}
@@ -41,8 +44,8 @@ public:
     inline void surfacesIntersect(SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
     {
         if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
-        const viscoelastic::Coefficients c =
-            viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), sidata.meff);
+        const double meff = (sidata.is_wall && wallMassAsParticle) ? 0.5 * sidata.meff : sidata.meff;
+        const viscoelastic::Coefficients c = viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), meff);
         const double Fn = viscoelastic::normalForce(c, sidata.deltan, -sidata.vn, limitForce);
 
         sidata.Fn = Fn;
@@ -68,6 +71,7 @@ public:
 
 private:
     bool limitForce;
+    bool wallMassAsParticle;
     ContactModelBase* cmb;
     viscoelastic::TypePairTable table;
 };

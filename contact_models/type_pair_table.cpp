@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <set>
 #include <string>
 
 #include "comm.h"
@@ -109,30 +110,29 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, c
                              i, j, tc[k] / dt, dtCrit, unit_[k].kn, unit_[k].cn, unit_[k].kt,
                              unit_[k].ct, eCont, d.restitution, 100.0 * err);
             if (dt > kMultiContactFactor * dtCrit)
-                warnings.push_back(format("%s: timestep %g s is above half the binary stability limit "
+                warnings.push_back(format("viscoelastic: timestep %g s is above half the binary stability limit "
                                    "%g s of type pair (%d,%d); beads with many simultaneous "
                                    "contacts may become unstable",
-                                   caller, dt, dtCrit, i, j));
+                                   dt, dtCrit, i, j));
             else if (std::fabs(err) > kAccuracyWarning)
-                warnings.push_back(format("%s: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) "
+                warnings.push_back(format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) "
                                    "restitutes %.4f instead of %.4f (%+.2f%%); a smaller "
                                    "timestep reduces this",
-                                   caller, dt, tc[k] / dt, i, j, d.restitution, eCont,
+                                   dt, tc[k] / dt, i, j, d.restitution, eCont,
                                    100.0 * err));
         }
 
-    // Pair style and every wall load the same table: report it once.
-    static std::string lastReport;
-    if (report == lastReport) return;
-    lastReport = report;
-    if (lmp->comm->me == 0) {
-        const std::string text =
-            format("%s: Pournin coefficients per type pair (limitForce %s):\n", caller,
-                   limitForce ? "on" : "off") + report;
+    // Pair style and every wall load the same table, at every run: say each
+    // thing once.
+    static std::set<std::string> said;
+    const std::string text = format("viscoelastic: Pournin coefficients per type pair (limitForce %s):\n",
+                                    limitForce ? "on" : "off") + report;
+    if (said.insert(text).second && lmp->comm->me == 0) {
         if (lmp->screen) fputs(text.c_str(), lmp->screen);
         if (lmp->logfile) fputs(text.c_str(), lmp->logfile);
     }
-    for (const std::string& w : warnings) lmp->error->warning(FLERR, w.c_str());
+    for (const std::string& w : warnings)
+        if (said.insert(w).second && lmp->comm->me == 0) lmp->error->warning(FLERR, w.c_str());
 }
 
 }  // namespace viscoelastic
