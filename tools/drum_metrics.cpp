@@ -119,18 +119,18 @@ double mean(const std::vector<double>& v, size_t from, size_t to)
     return std::accumulate(v.begin() + from, v.begin() + to, 0.0) / double(to - from);
 }
 
-// Standard error of the mean of v[from:] by batch means (10 batches), which
+// Standard error of the mean of v[from:to] by batch means (5 batches), which
 // accounts for the correlation between successive snapshots; never below the
 // naive estimate.
-double stdErrorOfMean(const std::vector<double>& v, size_t from)
+double stdErrorOfMean(const std::vector<double>& v, size_t from, size_t to)
 {
-    const size_t n = v.size() - from;
-    const double mu = mean(v, from, v.size());
+    const size_t n = to - from;
+    const double mu = mean(v, from, to);
     double var = 0.0;
-    for (size_t i = from; i < v.size(); ++i) var += (v[i] - mu) * (v[i] - mu);
+    for (size_t i = from; i < to; ++i) var += (v[i] - mu) * (v[i] - mu);
     var /= std::max<size_t>(n - 1, 1);
     const double naive = std::sqrt(var / n);
-    const size_t batches = 10, size = n / batches;
+    const size_t batches = 5, size = n / batches;
     if (size < 2) return naive;
     double bvar = 0.0;
     for (size_t b = 0; b < batches; ++b) {
@@ -140,18 +140,16 @@ double stdErrorOfMean(const std::vector<double>& v, size_t from)
     return std::max(naive, std::sqrt(bvar / (batches - 1) / batches));
 }
 
-// Does a straight line through v[from:] change significantly over the span?
-// For n evenly spaced samples the change's standard error is sqrt(12) times
-// the standard error of the mean; significant means beyond two of them.
+// Does v[from:] still drift? Its two halves' means differ by more than two
+// standard errors of the difference (a trend or a decaying transient both
+// separate the halves; noise does not). The noise is measured on the later
+// half alone: a transient in the earlier half would inflate its own error.
 bool drifts(const std::vector<double>& v, size_t from)
 {
-    const size_t n = v.size() - from;
-    const double tm = 0.5 * (n - 1);
-    const double mu = mean(v, from, v.size());
-    double sxy = 0.0, sxx = 0.0;
-    for (size_t i = 0; i < n; ++i) sxy += (i - tm) * (v[from + i] - mu), sxx += (i - tm) * (i - tm);
-    const double change = sxy / sxx * (n - 1);
-    return std::fabs(change) > 2.0 * std::sqrt(12.0) * stdErrorOfMean(v, from);
+    const size_t mid = from + (v.size() - from) / 2;
+    const double diff = mean(v, from, mid) - mean(v, mid, v.size());
+    const double se = stdErrorOfMean(v, mid, v.size());
+    return std::fabs(diff) > 2.0 * std::sqrt(2.0) * se;
 }
 
 }  // namespace
@@ -171,7 +169,7 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
 Average average(const std::vector<double>& v, int from)
 {
     if (from < 0 || from >= static_cast<int>(v.size())) return {NAN, NAN};
-    return {mean(v, from, v.size()), stdErrorOfMean(v, from)};
+    return {mean(v, from, v.size()), stdErrorOfMean(v, from, v.size())};
 }
 
 }  // namespace drum

@@ -37,7 +37,7 @@ Metrics measure(const Snapshot& s, double omegaSign);
 Snapshot readSnapshot(const std::string& file, double time);
 
 // Steady state: the earliest sample index from which no metric drifts — the
-// change of a straight-line fit over the rest of the series is within two
+// means of the two halves of the rest of the series agree within two
 // standard errors (correlation between snapshots included) — with at least
 // `minSamples` samples left. Returns -1 if there is none.
 int steadyStart(const std::vector<std::vector<double>>& series, int minSamples = 10);
@@ -45,7 +45,7 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples =
 struct Average {
     double mean = 0.0, stdError = 0.0;
 };
-// Mean and standard error, the error inflated for autocorrelation (batch means).
+// Mean and standard error of v[from:], by batch means (autocorrelation included).
 Average average(const std::vector<double>& v, int from);
 
 }  // namespace drum
