@@ -195,3 +195,24 @@ TEST(DrumInput, UnknownChoiceIsNamed)
     EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp)\nERROR: Label wasn't found"),
               std::string::npos) << r.output;
 }
+
+// The speed ramp of Fig. 3.5: the run's own metrics file carries the speed,
+// linear from rpm to rpm_end over the run.
+TEST(DrumInput, RampRaisesTheSpeedLinearly)
+{
+    const fs::path dir = freshDir("drum_ramp");
+    const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER +
+                               " -in inputs/drum.in -var fill 0.05 -var time 0.01 -var wall ramp -var rpm 21 -var rpm_end 28 -var name ramp",
+                           dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream f(dir / "post/ramp_run.csv");
+    std::string line;
+    std::getline(f, line);
+    int rows = 0;
+    while (std::getline(f, line)) {
+        const double t = std::stod(line), rpm = std::stod(line.substr(line.find(',') + 1));
+        EXPECT_NEAR(rpm, 21.0 + 7.0 * t / 0.01, 1e-9) << line;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 1);  // one row per 0.01 s
+}
