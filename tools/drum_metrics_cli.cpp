@@ -46,16 +46,18 @@ std::vector<std::pair<long, fs::path>> beadFiles(const std::string& prefix)
     return files;
 }
 
-int series(const std::string& prefix, double dt, double rpm, double skip)
+int series(const std::string& prefix, const std::string& outPrefix, double dt, double rpm, double skip, double until)
 {
     const double omegaSign = rpm >= 0 ? 1.0 : -1.0;
     std::vector<drum::Metrics> ms;
     for (const auto& [step, file] : beadFiles(prefix)) {
         const double t = step * dt;
-        if (t < skip) continue;
+        if (t < skip || t > until) continue;
         ms.push_back(drum::measure(drum::readSnapshot(file.string(), t), omegaSign));
     }
-    const std::string csvFile = prefix + "_metrics.csv";
+    if (ms.empty()) throw std::runtime_error("no snapshots of " + prefix + " between --skip and --until");
+    const std::string out = outPrefix.empty() ? prefix : outPrefix;
+    const std::string csvFile = out + "_metrics.csv";
     std::ofstream csv(csvFile);
     csv << "time,beads,head,shoulder,centre_of_mass,wall_contacts,tangential_force,repose_angle\n";
     std::vector<double> Hh, Hd, Hc, ft, angle;
@@ -82,7 +84,7 @@ int series(const std::string& prefix, double dt, double rpm, double skip)
                            "drum tangential force per bead [N]", "angle of repose [deg]"};
     for (int i = 0; i < 5; ++i) std::printf("  %-36s %12.6g +- %.2g\n", names[i], a[i].mean, a[i].stdError);
 
-    std::ofstream avg(prefix + "_average.csv");
+    std::ofstream avg(out + "_average.csv");
     avg << "rpm,beads,steady_from,snapshots,head,head_err,shoulder,shoulder_err,centre_of_mass,centre_of_mass_err,"
            "tangential_force,tangential_force_err,repose_angle,repose_angle_err\n";
     avg << rpm << "," << ms.back().beads << "," << tSteady << "," << int(ms.size()) - from;
@@ -90,7 +92,7 @@ int series(const std::string& prefix, double dt, double rpm, double skip)
     avg << "\n";
 
     std::ostringstream gp;
-    gp << "set terminal pngcairo size 1400,900 noenhanced\nset output '" << prefix << "_metrics.png'\n"
+    gp << "set terminal pngcairo size 1400,900 noenhanced\nset output '" << out << "_metrics.png'\n"
        << "set datafile separator ','\nset multiplot layout 2,2 title '" << fs::path(prefix).filename().string()
        << ": " << rpm << " rpm" << (start >= 0 ? ", dashed: steady state" : ", not steady yet") << "'\n"
        << "set grid\nset xlabel 'time [s]'\n";
@@ -103,7 +105,7 @@ int series(const std::string& prefix, double dt, double rpm, double skip)
        << "set ylabel 'dynamic angle of repose [deg]'\nplot '" << csvFile << "' every ::1 using 1:8 with lines notitle\n"
        << "unset multiplot\n";
     gnuplot(gp.str());
-    std::printf("wrote %s_metrics.csv, %s_metrics.png, %s_average.csv\n", prefix.c_str(), prefix.c_str(), prefix.c_str());
+    std::printf("wrote %s_metrics.csv, %s_metrics.png, %s_average.csv\n", out.c_str(), out.c_str(), out.c_str());
     return 0;
 }
 
@@ -160,20 +162,22 @@ int main(int argc, char** argv)
 {
     CLI::App app{"Drum metrics (head, departure shoulder, centre of mass, drum force, angle of repose) from LIGGGHTS VTK output"};
     app.require_subcommand(1);
-    std::string prefix, out = "post/sweep";
-    double dt = 1e-5, rpm = 0.0, skip = 0.0;
+    std::string prefix, seriesOut, out = "post/sweep";
+    double dt = 1e-5, rpm = 0.0, skip = 0.0, until = 1e300;
     std::vector<std::string> files;
     CLI::App* s = app.add_subcommand("series", "metrics of one run over time");
     s->add_option("--prefix", prefix, "bead files are <prefix>_<step>.vtp")->required();
     s->add_option("--dt", dt, "timestep of the run [s]")->check(CLI::PositiveNumber)->capture_default_str();
     s->add_option("--rpm", rpm, "drum speed (sign: direction about +x)")->required();
     s->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
+    s->add_option("--until", until, "ignore snapshots after this time [s]");
+    s->add_option("--out", seriesOut, "output prefix (default: --prefix)");
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
     t->add_option("--out", out, "output prefix")->capture_default_str();
     t->add_option("files", files, "<prefix>_average.csv files")->required();
     CLI11_PARSE(app, argc, argv);
     try {
-        return *s ? series(prefix, dt, rpm, skip) : table(out, files);
+        return *s ? series(prefix, seriesOut, dt, rpm, skip, until) : table(out, files);
     } catch (const std::exception& e) {
         std::cerr << "drum_metrics: " << e.what() << "\n";
         return 1;
