@@ -21,15 +21,13 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -f "$restart" ] || { echo "drum_scaling: --restart FILE (a settled drum) is required" >&2; exit 2; }
-liggghts=${LIGGGHTS:-liggghts}
+source "$(dirname "$0")/drum_common.sh"
 dir=post/$name
 mkdir -p "$dir"
 echo "ranks,round,loop_seconds,steps,atoms,nlocal_ave,nlocal_max,nlocal_min" > "$dir/timings.csv"
 for round in $(seq 1 "$rounds"); do
   for n in $ranks; do
-    mpirun=(mpirun -np "$n")
-    [ "$(id -u)" -eq 0 ] && mpirun+=(--allow-run-as-root)
-    [ "$n" -gt "$(nproc)" ] && mpirun+=(--oversubscribe)
+    mpirun_for "$n"
     echo "drum_scaling: round $round, $n rank(s) ..."
     log=$dir/np${n}_r$round.log
     "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var period "$period" -var rpm "$rpm" -var time "$time" \

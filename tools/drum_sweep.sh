@@ -30,11 +30,8 @@ while [ $# -gt 0 ]; do
     *) echo "drum_sweep: unknown option $1 (see the header of $0)" >&2; exit 2 ;;
   esac
 done
-liggghts=${LIGGGHTS:-liggghts}
-metrics=${DRUM_METRICS:-drum_metrics}
-mpirun=(mpirun -np "$np")
-[ "$(id -u)" -eq 0 ] && mpirun+=(--allow-run-as-root)
-[ "$np" -gt "$(nproc)" ] && mpirun+=(--oversubscribe)
+source "$(dirname "$0")/drum_common.sh"
+mpirun_for "$np"
 dir=post/$sweep
 mkdir -p "$dir"
 dt=$(grep -E '^variable dt ' inputs/drum.in | awk '{print $4}')

@@ -24,11 +24,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -f "$restart" ] || { echo "drum_wall_study: --restart FILE (a settled drum) is required" >&2; exit 2; }
-liggghts=${LIGGGHTS:-liggghts}
-metrics=${DRUM_METRICS:-drum_metrics}
-mpirun=(mpirun -np "$np")
-[ "$(id -u)" -eq 0 ] && mpirun+=(--allow-run-as-root)
-[ "$np" -gt "$(nproc)" ] && mpirun+=(--oversubscribe)
+source "$(dirname "$0")/drum_common.sh"
+mpirun_for "$np"
 dir=post/$name
 mkdir -p "$dir"
 dt=$(grep -E '^variable dt ' inputs/drum.in | awk '{print $4}')
