@@ -67,7 +67,7 @@ TEST(DrumMetrics, TangentialForceIsTheComponentAlongTheDrumMotion)
     EXPECT_NEAR(drum::measure(bed(0.0, -0.05, 0.25), -1.0).tangentialForce, -0.25, 1e-12);
 }
 
-TEST(SteadyState, DetectsTheEndOfATransient)
+TEST(SteadyState, DetectsTheEndOfATransientAndRejectsTrends)
 {
     std::mt19937 rng(7);
     std::normal_distribution<double> noise(0.0, 0.002);
@@ -77,7 +77,7 @@ TEST(SteadyState, DetectsTheEndOfATransient)
         flat.push_back(0.3 + noise(rng));
         trend.push_back(0.001 * i + noise(rng));  // drifts 0.2 against noise 0.002
     }
-    EXPECT_EQ(drum::steadyStart({flat}), 0);
+    EXPECT_LT(drum::steadyStart({flat}), 20);  // noise alone: little or nothing to cut
     EXPECT_EQ(drum::steadyStart({trend}), -1);
     const int start = drum::steadyStart({settling, flat});
     // by 5 decay times the transient (0.05 e^-5 = 3e-4) is below the noise
@@ -85,4 +85,25 @@ TEST(SteadyState, DetectsTheEndOfATransient)
     EXPECT_LT(start, 75);
     const drum::Average a = drum::average(settling, start);
     EXPECT_NEAR(a.mean, -0.1, 4.0 * a.stdError + 1e-4);
+}
+
+// An overshoot (rise, peak, settle) whose two halves have equal means must
+// not count as steady from the start: the case a half-means test misses.
+TEST(SteadyState, OvershootIsNotSteady)
+{
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.3);
+    std::vector<double> angle;
+    for (int i = 0; i < 200; ++i) {
+        const double t = i / 50.0;  // 0..4 s, the ramp lasts 0.8 s
+        const double clean = t < 0.8 ? 28.0 * t / 0.8 : 22.0 + 6.0 * std::exp(-(t - 0.8) / 0.15);
+        angle.push_back(clean + noise(rng));
+    }
+    const int start = drum::steadyStart({angle});
+    EXPECT_GE(start, 40);  // not before the peak at 0.8 s (sample 40)
+    // and by the time the overshoot is well below the noise: 6 e^-6 = 0.015
+    // at 0.8 s + 6 x 0.15 s = 1.7 s (sample 85)
+    EXPECT_LE(start, 85);
+    // cut at the midpoint the same series has not settled
+    EXPECT_EQ(drum::steadyStart({std::vector<double>(angle.begin(), angle.begin() + 100)}), -1);
 }

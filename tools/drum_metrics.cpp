@@ -140,30 +140,38 @@ double stdErrorOfMean(const std::vector<double>& v, size_t from, size_t to)
     return std::max(naive, std::sqrt(bvar / (batches - 1) / batches));
 }
 
-// Does v[from:] still drift? Its two halves' means differ by more than two
-// standard errors of the difference (a trend or a decaying transient both
-// separate the halves; noise does not). The noise is measured on the later
-// half alone: a transient in the earlier half would inflate its own error.
-bool drifts(const std::vector<double>& v, size_t from)
+// MSER (White 1997): the truncation d that minimises the squared standard
+// error of the remaining mean, sum((x_i - mean_d)^2) / (n - d)^2. Removing a
+// ramp or an overshoot lowers it; removing noise does not.
+int mserTruncation(const std::vector<double>& v)
 {
-    const size_t mid = from + (v.size() - from) / 2;
-    const double diff = mean(v, from, mid) - mean(v, mid, v.size());
-    const double se = stdErrorOfMean(v, mid, v.size());
-    return std::fabs(diff) > 2.0 * std::sqrt(2.0) * se;
+    const int n = static_cast<int>(v.size());
+    int best = 0;
+    double bestValue = 1e300;
+    for (int d = 0; d < n - 1; ++d) {
+        const double mu = mean(v, d, n);
+        double sse = 0.0;
+        for (int i = d; i < n; ++i) sse += (v[i] - mu) * (v[i] - mu);
+        const double value = sse / (double(n - d) * double(n - d));
+        if (value < bestValue) bestValue = value, best = d;
+    }
+    return best;
 }
 
 }  // namespace
 
 int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
 {
-    if (series.empty()) return -1;
-    const int n = static_cast<int>(series.front().size());
-    for (int from = 0; from + minSamples <= n; ++from) {
-        bool steady = true;
-        for (const std::vector<double>& v : series) steady = steady && !drifts(v, from);
-        if (steady) return from;
+    int start = 0;
+    for (const std::vector<double>& v : series) {
+        const int n = static_cast<int>(v.size());
+        if (n < 2 * minSamples) return -1;
+        const int d = mserTruncation(v);
+        // an optimum in the second half means the series never settled
+        if (d > n / 2) return -1;
+        start = std::max(start, d);
     }
-    return -1;
+    return start;
 }
 
 Average average(const std::vector<double>& v, int from)

@@ -36,10 +36,10 @@ Metrics measure(const Snapshot& s, double omegaSign);
 // radius and f_force_shell[1-3].
 Snapshot readSnapshot(const std::string& file, double time);
 
-// Steady state: the earliest sample index from which no metric drifts — the
-// means of the two halves of the rest of the series agree within two
-// standard errors (correlation between snapshots included) — with at least
-// `minSamples` samples left. Returns -1 if there is none.
+// Steady state: the sample index from which every metric has settled, by
+// the MSER rule (White 1997) applied to each series; -1 when a series'
+// optimal truncation lies in its second half (it never settled) or it has
+// fewer than 2 minSamples samples.
 int steadyStart(const std::vector<std::vector<double>>& series, int minSamples = 10);
 
 struct Average {
