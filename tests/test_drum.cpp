@@ -222,3 +222,18 @@ TEST(DrumInput, RampRaisesTheSpeedLinearly)
     }
     EXPECT_EQ(rows, 1);  // one row per 0.01 s
 }
+
+// LIGGGHTS restores a mesh from a restart file when the fix ID matches; the
+// input ties the ID to the resolution, so asking for another mesh on a
+// restart must read that mesh, not silently keep the old one.
+TEST_F(SmallDrum, RestartWithAnotherMeshReadsThatMesh)
+{
+    ASSERT_EQ(run.status, 0);
+    const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER +
+                               " -in inputs/drum.in -var fill 0.10 -var time 0.001 -var segments 90"
+                               " -var start restart -var restart post/small.restart -var name small90",
+                           dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("mesh drum90 containing 180 triangle(s)"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("drum_L6_N90.stl) is required, but data will be taken from restart"), std::string::npos);
+}
