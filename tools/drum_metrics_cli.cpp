@@ -128,15 +128,17 @@ int table(const std::string& out, const std::vector<std::string>& files)
     std::sort(rows.begin(), rows.end());
     std::ofstream csv(out + ".csv"), md(out + ".md");
     csv << header << "\n";
-    md << "| rpm | beads | steady from [s] | snapshots | head Hh [m] | shoulder Hd [m] | centre of mass Hc [m] | "
+    md << "| rpm | beads | steady from [s] | snapshots averaged | head Hh [m] | shoulder Hd [m] | centre of mass Hc [m] | "
           "drum force per bead [N] | angle of repose [deg] |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : rows) {
         for (size_t i = 0; i < r.size(); ++i) csv << (i ? "," : "") << r[i];
         csv << "\n";
+        char steady[64] = "not steady: last half";
+        if (!std::isnan(r[2])) std::snprintf(steady, sizeof steady, "%.2f", r[2]);
         char buf[512];
         std::snprintf(buf, sizeof buf,
-                      "| %g | %g | %.2f | %g | %.4f ± %.4f | %.4f ± %.4f | %.5f ± %.5f | %.3g ± %.2g | %.1f ± %.1f |\n",
-                      r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8], r[9], r[10], r[11], r[12], r[13]);
+                      "| %g | %g | %s | %g | %.4f ± %.4f | %.4f ± %.4f | %.5f ± %.5f | %.3g ± %.2g | %.1f ± %.1f |\n",
+                      r[0], r[1], steady, r[3], r[4], r[5], r[6], r[7], r[8], r[9], r[10], r[11], r[12], r[13]);
         md << buf;
     }
     csv.close();
