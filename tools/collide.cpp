@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "liggghts_run.h"
+#include "gnuplot.h"
 
 using namespace impact;
 namespace fs = std::filesystem;
@@ -93,14 +94,6 @@ std::string describe(const Case& c, bool withVelocity = true, bool withDt = true
     if (withVelocity) s << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed << " m/s";
     if (withDt) s << ", tc/dt " << c.params.tc / c.dt;
     return s.str();
-}
-
-void gnuplot(const std::string& script)
-{
-    FILE* p = popen("gnuplot", "w");
-    if (!p) throw std::runtime_error("cannot start gnuplot");
-    fputs(script.c_str(), p);
-    if (pclose(p) != 0) throw std::runtime_error("gnuplot failed");
 }
 
 int runCase(Options& o)

@@ -9,3 +9,10 @@ mpirun_for() {  # ranks -> fills the array `mpirun`
   [ "$1" -gt "$(nproc)" ] && mpirun+=(--oversubscribe)
   return 0
 }
+
+# The timestep drum.in uses by default (to turn dump step numbers into times).
+drum_dt=$(grep -E '^variable dt ' "$(dirname "${BASH_SOURCE[0]}")/../inputs/drum.in" | awk '{print $4}')
+
+median() {  # of the numbers on stdin, one per line
+  sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'
+}

@@ -15,18 +15,11 @@
 #include <sstream>
 
 #include "drum_metrics.h"
+#include "gnuplot.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-void gnuplot(const std::string& script)
-{
-    FILE* p = popen("gnuplot", "w");
-    if (!p) throw std::runtime_error("cannot start gnuplot");
-    fputs(script.c_str(), p);
-    if (pclose(p) != 0) throw std::runtime_error("gnuplot failed");
-}
 
 // Bead files <prefix>_<step>.vtp (or .vtk), in step order.
 std::vector<std::pair<long, fs::path>> beadFiles(const std::string& prefix)

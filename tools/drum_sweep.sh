@@ -34,7 +34,7 @@ source "$(dirname "$0")/drum_common.sh"
 mpirun_for "$np"
 dir=post/$sweep
 mkdir -p "$dir"
-dt=$(grep -E '^variable dt ' inputs/drum.in | awk '{print $4}')
+dt=$drum_dt
 for arg in "$@"; do [ "${prev:-}" = dt ] && dt=$arg; prev=$arg; done
 
 run() {  # name, extra -var arguments...

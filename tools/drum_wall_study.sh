@@ -28,7 +28,7 @@ source "$(dirname "$0")/drum_common.sh"
 mpirun_for "$np"
 dir=post/$name
 mkdir -p "$dir"
-dt=$(grep -E '^variable dt ' inputs/drum.in | awk '{print $4}')
+dt=$drum_dt
 variants=("surface 180" "moving 180" "surface 90" "surface 360")
 
 echo "variant,round,loop_seconds,steps" > "$dir/timings.csv"
@@ -59,10 +59,10 @@ done
     set -- $v
     tag=${1}_${2}
     "$metrics" series --prefix "$dir/${tag}_r1" --dt "$dt" --rpm "$rpm" > "$dir/${tag}_metrics.txt"
-    median=$(awk -F, -v t="$tag" '$1 == t {print $3}' "$dir/timings.csv" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}')
+    loop=$(awk -F, -v t="$tag" '$1 == t {print $3}' "$dir/timings.csv" | median)
     ratio=$(awk -F, -v t="$tag" '$1 == "surface_180" {ref[$2] = $3} $1 == t {x[$2] = $3} END {for (r in x) print x[r] / ref[r]}' "$dir/timings.csv" \
-      | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}')
-    awk -F, -v w="$1" -v f="$2" -v m="$median" -v q="$ratio" 'NR == 2 {
+      | median)
+    awk -F, -v w="$1" -v f="$2" -v m="$loop" -v q="$ratio" 'NR == 2 {
         printf "| %s | %s | %.1f | %.3f | %.4f ± %.4f | %.4f ± %.4f | %.5f ± %.5f | %.1f ± %.1f |\n",
                w, f, m, q, $5, $6, $7, $8, $9, $10, $13, $14 }' "$dir/${tag}_r1_average.csv"
   done
