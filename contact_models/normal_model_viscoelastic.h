@@ -20,7 +20,7 @@ class NormalModel<VISCOELASTIC> : public NormalModelBase
 {
 public:
     NormalModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
-        : NormalModelBase(lmp, hsetup, c), limitForce(false), wallMassAsParticle(false), cmb(c)
+        : NormalModelBase(lmp, hsetup, c), limitForce(false), wallMassAsParticle(false), exactRestitution(false), cmb(c)
     {}
 
     void registerSettings(Settings& settings)
@@ -29,13 +29,16 @@ public:
         // YADE gives a mass-less facet the mass of the body it touches, so a
         // sphere-wall contact has meff = m/2 there (off: meff = m).
         settings.registerOnOff("wallMassAsParticle", wallMassAsParticle, false);
+        // Coefficients for which a binary collision integrated at this
+        // timestep restitutes en, et and lasts tc (core/discrete.h).
+        settings.registerOnOff("exactRestitution", exactRestitution, false);
     }
 
     void postSettings(IContactHistorySetup*, ContactModelBase*) {}
 
     void connectToProperties(PropertyRegistry& registry)
     {
-        table.load(lmp, registry.max_type(), limitForce,
+        table.load(lmp, registry.max_type(), limitForce, exactRestitution,
                    cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic");
     }
 
@@ -72,6 +75,7 @@ public:
 private:
     bool limitForce;
     bool wallMassAsParticle;
+    bool exactRestitution;
     ContactModelBase* cmb;
     viscoelastic::TypePairTable table;
 };

@@ -1,10 +1,14 @@
 #include "type_pair_table.h"
 
+#include "core/discrete.h"
+
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "comm.h"
 #include "error.h"
@@ -71,9 +75,20 @@ constexpr double kAccuracyWarning = 0.01;
 // binary one (12 neighbours, fcc), which halves the stable step.
 constexpr double kMultiContactFactor = 0.5;
 
+// `exactRestitution on` solves for the coefficients once per type pair and
+// timestep; the pair style and every wall ask for the same ones at every run.
+const ExactSolution& exactSolution(const ContactParameters& p, double dt, bool limitForce)
+{
+    static std::map<std::tuple<double, double, double, double, bool>, ExactSolution> cache;
+    const auto key = std::make_tuple(p.tc, p.en, p.et, dt, limitForce);
+    auto it = cache.find(key);
+    if (it == cache.end()) it = cache.emplace(key, exactUnitCoefficients(p, dt, limitForce)).first;
+    return it->second;
+}
+
 }  // namespace
 
-void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, const char* caller)
+void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, bool exact, const char* caller)
 {
     std::vector<double> tc, en, et, mu;
     readProperty(lmp, kDuration, maxType, caller, tc);
@@ -91,9 +106,10 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, c
         for (int j = 1; j <= maxType; ++j) {
             const int k = i * stride_ + j;
             params_[k] = {tc[k], en[k], et[k], mu[k]};
-            unit_[k] = pourninUnitCoefficients(params_[k]);
-            if (j < i) continue;
-
+            if (j < i) {  // symmetric: done as (j,i)
+                unit_[k] = unit_[j * stride_ + i];
+                continue;
+            }
             const double dtCrit = criticalTimestep(params_[k]);
             if (dt > dtCrit)
                 lmp->error->all(
@@ -101,32 +117,64 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, c
                                   "(%d,%d) (tc %g s, en %g, et %g): use timestep < %g",
                                   caller, dt, dtCrit, i, j, tc[k], en[k], et[k], dtCrit)
                                .c_str());
-            const DiscreteCollision d = discreteCollision(tc[k], en[k], dt, limitForce);
-            const double eCont = continuousRestitution(tc[k], en[k], limitForce);
-            const double err = d.restitution / eCont - 1.0;
-            report += format("  (%d,%d): tc/dt %.1f, dt limit %.4g s, kn/meff %.6g 1/s^2, "
-                             "cn/meff %.6g 1/s, kt/meff %.6g 1/s^2, ct/meff %.6g 1/s, "
-                             "restitution %.4f continuous, %.4f at this dt (%+.2f%%)\n",
-                             i, j, tc[k] / dt, dtCrit, unit_[k].kn, unit_[k].cn, unit_[k].kt,
-                             unit_[k].ct, eCont, d.restitution, 100.0 * err);
             if (dt > kMultiContactFactor * dtCrit)
                 warnings.push_back(format("viscoelastic: timestep %g s is above half the binary stability limit "
-                                   "%g s of type pair (%d,%d); beads with many simultaneous "
-                                   "contacts may become unstable",
-                                   dt, dtCrit, i, j));
-            else if (std::fabs(err) > kAccuracyWarning)
-                warnings.push_back(format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) "
-                                   "restitutes %.4f instead of %.4f (%+.2f%%); a smaller "
-                                   "timestep reduces this",
-                                   dt, tc[k] / dt, i, j, d.restitution, eCont,
-                                   100.0 * err));
+                                          "%g s of type pair (%d,%d); beads with many simultaneous "
+                                          "contacts may become unstable",
+                                          dt, dtCrit, i, j));
+            const DiscreteCollision nominal = phaseAveragedCollision(params_[k], dt, limitForce);
+            if (!exact) {
+                unit_[k] = pourninUnitCoefficients(params_[k]);
+                const double eCont = continuousRestitution(tc[k], en[k], limitForce);
+                const double err = nominal.restitution / eCont - 1.0;
+                report += format("  (%d,%d): tc/dt %.1f, dt limit %.4g s, kn/meff %.6g 1/s^2, "
+                                 "cn/meff %.6g 1/s, kt/meff %.6g 1/s^2, ct/meff %.6g 1/s, "
+                                 "restitution %.4f continuous, %.4f at this dt (%+.2f%%), duration %.4g s\n",
+                                 i, j, tc[k] / dt, dtCrit, unit_[k].kn, unit_[k].cn, unit_[k].kt, unit_[k].ct,
+                                 eCont, nominal.restitution, 100.0 * err, nominal.duration);
+                if (dt <= kMultiContactFactor * dtCrit && std::fabs(err) > kAccuracyWarning)
+                    warnings.push_back(format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) "
+                                              "restitutes %.4f instead of %.4f (%+.2f%%); a smaller timestep or "
+                                              "exactRestitution on reduces this",
+                                              dt, tc[k] / dt, i, j, nominal.restitution, eCont, 100.0 * err));
+                continue;
+            }
+            const ExactSolution& x = exactSolution(params_[k], dt, limitForce);
+            if (!x.ok())
+                lmp->error->all(
+                    FLERR, format("%s: exactRestitution: type pair (%d,%d): %s", caller, i, j, x.failure.c_str())
+                               .c_str());
+            unit_[k] = x.unit;
+            // the corrected oscillators must be stable too
+            const double dtCritExact =
+                std::min(criticalTimestepOf(x.unit.kn, x.unit.cn),
+                         criticalTimestepOf(x.unit.kt / kTangentialMassRatio, x.unit.ct / kTangentialMassRatio));
+            if (dt > dtCritExact)
+                lmp->error->all(FLERR, format("%s: exactRestitution: timestep %g s exceeds the stability limit "
+                                              "%g s of the corrected coefficients of type pair (%d,%d)",
+                                              caller, dt, dtCritExact, i, j)
+                                           .c_str());
+            report += format("  (%d,%d): tc/dt %.1f, dt limit %.4g s, kn/meff %.6g 1/s^2, cn/meff %.6g 1/s, "
+                             "kt/meff %.6g 1/s^2, ct/meff %.6g 1/s (Pournin's for tc %.6g s, en %.6f); "
+                             "restitution %.6f, tangential %.6f, duration %.6g s at this dt "
+                             "(nominal coefficients: %.4f, %.4f, %.4g s)\n",
+                             i, j, tc[k] / dt, dtCritExact, x.unit.kn, x.unit.cn, x.unit.kt, x.unit.ct,
+                             x.tcNormal, x.enNormal, x.achieved.restitution, x.achieved.tangentialRestitution,
+                             x.achieved.duration, nominal.restitution, nominal.tangentialRestitution,
+                             nominal.duration);
+            if (!x.warning.empty())
+                warnings.push_back(format("viscoelastic: type pair (%d,%d): %s", i, j, x.warning.c_str()));
         }
 
     // Pair style and every wall load the same table, at every run: say each
     // thing once.
     static std::set<std::string> said;
-    const std::string text = format("viscoelastic: Pournin coefficients per type pair (limitForce %s):\n",
-                                    limitForce ? "on" : "off") + report;
+    const std::string text =
+        format("viscoelastic: %s per type pair (limitForce %s), outcomes averaged over the contact-start phase:\n",
+               exact ? "coefficients for the exact restitution at this timestep (exactRestitution on)"
+                     : "Pournin coefficients",
+               limitForce ? "on" : "off") +
+        report;
     if (said.insert(text).second && lmp->comm->me == 0) {
         if (lmp->screen) fputs(text.c_str(), lmp->screen);
         if (lmp->logfile) fputs(text.c_str(), lmp->logfile);

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/viscoelastic.h"
+#include "core/discrete.h"
 
 using namespace viscoelastic;
 
@@ -170,4 +170,113 @@ TEST(Tangential, TurningNormalKeepsOverlapLength)
     EXPECT_NEAR(s.xi.norm(), 1e-5, 1e-18);
     EXPECT_NEAR(s.xi.dot(n), 0.0, 1e-20);
     EXPECT_EQ(s.normal, n);
+}
+
+// --- core/discrete.h: phase averages and `exactRestitution` ---------------
+
+// Brute force: the plain mean over many evenly spread phases. Its own error
+// is at most (largest jump of the outcome over the phase) / (2 phases): the
+// jump is about cn dt (< 0.3 here), so 1e-5 with 20,000 phases.
+DiscreteCollision bruteForce(const UnitCoefficients& u, double dt, bool limitForce)
+{
+    return sampledCollision(u, dt, limitForce, 20000);
+}
+
+TEST(PhaseAverage, ExactIntegralAgreesWithBruteForce)
+{
+    for (bool limit : {false, true})
+        for (double ratio : {5.0, 10.0, 33.0})
+            for (double en : {0.3, 0.56, 0.9}) {
+                const UnitCoefficients u = pourninUnitCoefficients(1e-4, en, 0.46);
+                const double dt = 1e-4 / ratio;
+                const DiscreteCollision a = phaseAveragedCollision(u, dt, limit), b = bruteForce(u, dt, limit);
+                EXPECT_NEAR(a.restitution, b.restitution, 1e-5) << en << " tc/" << ratio << " limit " << limit;
+                EXPECT_NEAR(a.tangentialRestitution, b.tangentialRestitution, 1e-5);
+                EXPECT_NEAR(a.duration, b.duration, 1e-4 * dt);
+            }
+}
+
+// At tc/10 a single contact's restitution depends on its start phase by
+// several per cent: the reason averages are over the phase.
+TEST(PhaseAverage, SingleContactsScatterAtCoarseSteps)
+{
+    const UnitCoefficients u = pourninUnitCoefficients(1e-4, 0.56, 0.46);
+    double lo = 1, hi = 0;
+    for (int p = 0; p < 100; ++p) {
+        const double e = discreteCollisionAtPhase(u, 1e-5, false, (p + 0.5) / 100).outcome.restitution;
+        lo = std::min(lo, e), hi = std::max(hi, e);
+    }
+    EXPECT_GT(hi - lo, 0.05);
+}
+
+struct ExactCase {
+    double en, et, ratio;
+    bool limitForce;
+};
+
+// The solved coefficients, checked by brute force (not by the integral the
+// solver uses): requested en and et to 1e-5 (the brute-force error above),
+// duration to a thousandth of a step.
+TEST(ExactRestitution, BinaryCollisionRestitutesTheRequestAtCoarseSteps)
+{
+    const ExactCase cases[] = {{0.56, 0.46, 5, false}, {0.56, 0.46, 10, false}, {0.56, 0.46, 10, true},
+                               {0.56, 0.46, 5, true},  {0.46, 0.46, 10, true},  {0.3, 0.8, 10, false},
+                               {0.9, 0.2, 20, true},   {0.99, 0.99, 10, false}, {0.56, 0.46, 200, true}};
+    for (const ExactCase& k : cases) {
+        const ContactParameters p{1e-4, k.en, k.et, 0.5};
+        const double dt = p.tc / k.ratio;
+        const ExactSolution s = exactUnitCoefficients(p, dt, k.limitForce);
+        ASSERT_TRUE(s.ok()) << s.failure;
+        EXPECT_TRUE(s.warning.empty()) << s.warning;
+        const DiscreteCollision b = bruteForce(s.unit, dt, k.limitForce);
+        const std::string what = "en " + std::to_string(k.en) + " tc/" + std::to_string(k.ratio) +
+                                 (k.limitForce ? " limitForce" : "");
+        EXPECT_NEAR(b.restitution, k.en, 1e-5) << what;
+        EXPECT_NEAR(b.tangentialRestitution, k.et, 1e-5) << what;
+        EXPECT_NEAR(b.duration, p.tc, 1e-3 * dt) << what;
+        // stable, and no negative dashpots
+        EXPECT_LT(dt, criticalTimestepOf(s.unit.kn, s.unit.cn)) << what;
+        EXPECT_GT(s.unit.cn, 0.0);
+        EXPECT_GT(s.unit.ct, 0.0);
+    }
+}
+
+// As dt -> 0 the discrete law becomes the continuous one: the correction
+// vanishes without limitForce (first order in dt), and with it tends to the
+// inverse of Schwager & Poeschel's relation.
+TEST(ExactRestitution, TendsToTheContinuousCoefficientsAsDtVanishes)
+{
+    const ContactParameters p{1e-4, 0.56, 0.46, 0.5};
+    const UnitCoefficients nominal = pourninUnitCoefficients(p);
+    const ExactSolution fine = exactUnitCoefficients(p, p.tc / 400, false);
+    ASSERT_TRUE(fine.ok());
+    EXPECT_NEAR(fine.unit.kn / nominal.kn, 1.0, 0.01);
+    EXPECT_NEAR(fine.unit.cn / nominal.cn, 1.0, 0.01);
+    EXPECT_NEAR(fine.unit.kt / nominal.kt, 1.0, 0.01);
+    const ExactSolution coarse = exactUnitCoefficients(p, p.tc / 20, false);
+    EXPECT_GT(std::fabs(coarse.unit.kn / nominal.kn - 1.0), 10.0 * std::fabs(fine.unit.kn / nominal.kn - 1.0));
+
+    const ExactSolution limited = exactUnitCoefficients(p, p.tc / 400, true);
+    ASSERT_TRUE(limited.ok());
+    // the en' that the continuous law with forbidden attraction turns into 0.56
+    EXPECT_NEAR(continuousRestitution(limited.tcNormal, limited.enNormal, true), 0.56, 0.003);
+}
+
+TEST(ExactRestitution, UnreachableRequestFailsWithReason)
+{
+    // forbidding attraction bounds the restitution from below (0.25 for en -> 0.1, continuous)
+    const ExactSolution s = exactUnitCoefficients({1e-4, 0.1, 0.46, 0.5}, 1e-5, true);
+    EXPECT_FALSE(s.ok());
+    EXPECT_NE(s.failure.find("limitForce"), std::string::npos) << s.failure;
+    EXPECT_NE(s.failure.find("en 0.1"), std::string::npos) << s.failure;
+}
+
+TEST(ExactRestitution, ElasticContactNeedsNoDashpot)
+{
+    const ExactSolution s = exactUnitCoefficients({1e-4, 1.0, 1.0, 0.5}, 1e-5, false);
+    ASSERT_TRUE(s.ok()) << s.failure;
+    EXPECT_EQ(s.unit.cn, 0.0);
+    EXPECT_EQ(s.unit.ct, 0.0);
+    EXPECT_NEAR(bruteForce(s.unit, 1e-5, false).restitution, 1.0, 1e-5);
+    EXPECT_NEAR(bruteForce(s.unit, 1e-5, false).duration, 1e-4, 1e-3 * 1e-5);
 }

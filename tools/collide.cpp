@@ -23,7 +23,7 @@ namespace {
 struct Options {
     Case c;
     RunOptions run;
-    std::string geometry = "pair", tangential = "pournin", limitForce = "off";
+    std::string geometry = "pair", tangential = "pournin", limitForce = "off", exact = "off";
     double ratio = 100.0;  // tc / dt
     double spin = 0.0;     // z spin of sphere 1 [rad/s]
     int phases = 1;
@@ -34,6 +34,7 @@ struct Options {
         c.geometry = parseGeometry(geometry);
         c.tangential = parseTangential(tangential);
         c.limitForce = limitForce == "on";
+        c.exactRestitution = exact == "on";
         c.spin1 = Vec3(0, 0, spin);
         c.dt = c.params.tc / ratio;
     }
@@ -46,6 +47,9 @@ void addCaseOptions(CLI::App* app, Options& o)
     app->add_option("--tangential", o.tangential, "tangential model: history | pournin")
         ->check(CLI::IsMember({"history", "pournin"}))->capture_default_str();
     app->add_option("--limit-force", o.limitForce, "forbid attraction: on | off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--exact-restitution", o.exact,
+                    "model setting exactRestitution: coefficients corrected for the timestep: on | off")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--tc", o.c.params.tc, "contact duration [s]")->check(CLI::PositiveNumber)->capture_default_str();
     app->add_option("--en", o.c.params.en, "normal restitution")->check(CLI::Range(1e-6, 1.0))->capture_default_str();
@@ -67,14 +71,16 @@ void addCaseOptions(CLI::App* app, Options& o)
 
 double relErr(double value, double ref) { return ref != 0.0 ? value / ref - 1.0 : value; }
 
-// LIGGGHTS outcome averaged over `phases` evenly spread contact-start phases.
+// LIGGGHTS outcome averaged over `phases` evenly spread contact-start phases
+// (p + 0.5) / phases, all in one run.
 Outcome runAveraged(const Options& o, int phases)
 {
+    std::vector<double> ph;
+    for (int p = 0; p < phases; ++p) ph.push_back(phases == 1 ? o.run.phase : (p + 0.5) / phases);
+    const std::vector<Trajectory> runs = runLiggghts(o.c, o.run, ph);
     Outcome sum;
-    for (int p = 0; p < phases; ++p) {
-        RunOptions r = o.run;
-        r.phase = phases == 1 ? o.run.phase : (p + 0.5) / phases;
-        const Outcome x = measure(o.c, runLiggghts(o.c, r));
+    for (const Trajectory& t : runs) {
+        const Outcome x = measure(o.c, t);
         sum.restitution += x.restitution / phases;
         sum.duration += x.duration / phases;
         sum.peakOverlap += x.peakOverlap / phases;
@@ -91,6 +97,7 @@ std::string describe(const Case& c, bool withVelocity = true, bool withDt = true
     s << name(c.geometry) << ", tangential " << name(c.tangential) << ", limitForce "
       << (c.limitForce ? "on" : "off") << ", tc " << c.params.tc << " s, en " << c.params.en << ", et "
       << c.params.et << ", mu " << c.params.mu;
+    if (c.exactRestitution) s << ", exactRestitution on";
     if (withVelocity) s << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed << " m/s";
     if (withDt) s << ", tc/dt " << c.params.tc / c.dt;
     return s.str();
@@ -157,9 +164,13 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
         const double tErr = relErr(lig.tangentialRestitution, ref.outcome.tangentialRestitution);
         // the normal recurrence is mass-independent: valid for every geometry;
         // same start phases as the LIGGGHTS runs
-        const double predicted =
-            viscoelastic::discreteCollision(o.c.params.tc, o.c.params.en, o.c.dt, o.c.limitForce, o.phases)
-                .restitution;
+        viscoelastic::UnitCoefficients u = viscoelastic::pourninUnitCoefficients(o.c.params);
+        if (o.c.exactRestitution) {
+            const viscoelastic::ExactSolution x = viscoelastic::exactUnitCoefficients(o.c.params, o.c.dt, o.c.limitForce);
+            if (!x.ok()) throw std::runtime_error(x.failure);
+            u = x.unit;
+        }
+        const double predicted = viscoelastic::sampledCollision(u, o.c.dt, o.c.limitForce, o.phases).restitution;
         std::printf("%8.1f %12.6f %+11.3f%% %12.6f %+11.2f st", ratio, lig.restitution, 100 * eErr, predicted,
                     (lig.duration - ref.outcome.duration) / o.c.dt);
         if (oblique) std::printf(" %+13.3f%%", 100 * tErr);

@@ -306,6 +306,19 @@ std::optional<ClosedForm> closedForm(const Case& c)
 
 Reference reference(const Case& c)
 {
+    if (c.exactRestitution) {
+        // The request itself: en and tc (also with limitForce). The rest is
+        // the continuous law's: its tangential restitution differs from et
+        // by the lever arm's shortening with the overlap (O(overlap / R),
+        // speed-dependent), which no per-type-pair coefficient can absorb.
+        Case nominal = c;
+        nominal.exactRestitution = false;
+        Reference r = reference(nominal);
+        r.outcome.restitution = c.params.en;
+        r.outcome.duration = c.params.tc;
+        r.source = "requested en and tc (exactRestitution on); other quantities: " + r.source;
+        return r;
+    }
     const std::optional<ClosedForm> cf = closedForm(c);
     if (cf && cf->regime == "normal") return {cf->outcome, "closed form"};
     // Oblique closed forms assume the rigid lever arm R; the law acts at

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/viscoelastic.h"
+#include "core/discrete.h"
 
 namespace impact {
 
@@ -29,6 +29,7 @@ struct Case {
     Geometry geometry = Geometry::Pair;
     Tangential tangential = Tangential::Pournin;
     bool limitForce = false;
+    bool exactRestitution = false;  // the model's exactRestitution setting
     viscoelastic::ContactParameters params{1e-4, 0.56, 0.46, 0.5};
     double radius1 = 1.5e-3, radius2 = 1.5e-3;    // [m]
     double density1 = 2500.0, density2 = 2500.0;  // [kg/m^3]
@@ -91,7 +92,8 @@ struct ClosedForm {
 };
 std::optional<ClosedForm> closedForm(const Case& c);
 
-// The reference: closed form where it exists, the ODE otherwise.
+// The reference: closed form where it exists, the ODE otherwise. With
+// exactRestitution the restitution and duration are the requested en and tc.
 struct Reference {
     Outcome outcome;
     std::string source;  // "closed form (...)" or "ODE"

@@ -32,10 +32,15 @@ std::string num(double v)
 
 // Gap that makes the first overlap occur `phase` of a step after step
 // `steps`, so runs at different dt start their contact at the same phase.
-double initialGap(const Case& c, const RunOptions& o, int steps)
+double initialGap(const Case& c, double phase, int steps)
 {
-    return (steps + o.phase - 1.0) * c.normalSpeed * c.dt;
+    return (steps + phase - 1.0) * c.normalSpeed * c.dt;
 }
+
+// Copies of the impact (one per contact-start phase) sit side by side along
+// z, far enough apart never to touch.
+double copySpacing(const Case& c) { return 3.0 * (c.radius1 + c.radius2); }
+double copyOffset(const Case& c, int copy, int copies) { return (copy - 0.5 * (copies - 1)) * copySpacing(c); }
 
 constexpr int kApproachSteps = 3;
 
@@ -53,33 +58,35 @@ std::string modelArgs(const Case& c)
 // wall/gran reads model settings only after the wall geometry
 std::string modelSettings(const Case& c)
 {
-    return std::string("limitForce ") + (c.limitForce ? "on" : "off");
+    return std::string("limitForce ") + (c.limitForce ? "on" : "off") +
+           (c.exactRestitution ? " exactRestitution on" : "");
 }
 
-// A square of two triangles in the plane x = 0, normal +x.
-void writePlaneStl(const fs::path& file, double half)
+// A rectangle of two triangles in the plane x = 0, normal +x.
+void writePlaneStl(const fs::path& file, double halfY, double halfZ)
 {
     std::ofstream f(file);
-    const std::string h = num(half), m = num(-half);
+    const std::string h = num(halfY), m = num(-halfY), hz = num(halfZ), mz = num(-halfZ);
     auto facet = [&](const std::string& a, const std::string& b, const std::string& cc) {
         f << "facet normal 1 0 0\n outer loop\n  vertex " << a << "\n  vertex " << b << "\n  vertex " << cc
           << "\n endloop\nendfacet\n";
     };
     f << "solid plane\n";
-    facet("0 " + m + " " + m, "0 " + h + " " + m, "0 " + h + " " + h);
-    facet("0 " + m + " " + m, "0 " + h + " " + h, "0 " + m + " " + h);
+    facet("0 " + m + " " + mz, "0 " + h + " " + mz, "0 " + h + " " + hz);
+    facet("0 " + m + " " + mz, "0 " + h + " " + hz, "0 " + m + " " + hz);
     f << "endsolid plane\n";
 }
 
-std::string setup(const Case& c, const RunOptions& o)
+std::string setup(const Case& c, const RunOptions& o, int copies)
 {
     const double L = 10.0 * std::max(c.radius1, c.radius2);
+    const double Lz = L + 0.5 * (copies - 1) * copySpacing(c);
     std::ostringstream s;
     s << "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n"
          "communicate single vel yes\nunits si\n";
     if (o.ranks > 1) s << "processors " << o.ranks << " 1 1\n";
     return s.str() + "region box block " + num(-L) + " " + num(L) + " " + num(-L) + " " + num(L) + " " +
-           num(-L) + " " + num(L) + " units box\n";
+           num(-Lz) + " " + num(Lz) + " units box\n";
 }
 
 std::string physics(const Case& c)
@@ -129,34 +136,38 @@ std::string launcher(const RunOptions& o)
            (o.preload.empty() ? "" : " -x LD_PRELOAD") + " " + shellQuote(o.liggghts);
 }
 
-std::vector<Snapshot> readDump(const fs::path& file, const Case& c)
+// Frames of every copy: copy k holds atoms k*perCopy+1 .. (k+1)*perCopy,
+// shifted back to z = 0.
+std::vector<Trajectory> readDump(const fs::path& file, const Case& c, int copies)
 {
     std::ifstream f(file);
     if (!f) throw std::runtime_error("no dump file " + file.string());
-    std::vector<Snapshot> frames;
+    const int perCopy = c.isWall() ? 1 : 2;
+    std::vector<Trajectory> out(copies);
     std::string line;
     long step = 0;
     while (std::getline(f, line)) {
         if (line.rfind("ITEM: TIMESTEP", 0) == 0) {
             f >> step;
         } else if (line.rfind("ITEM: ATOMS", 0) == 0) {
-            Snapshot s;
-            s.time = step * c.dt;
-            const int atoms = c.isWall() ? 1 : 2;
-            for (int a = 0; a < atoms; ++a) {
+            std::vector<Snapshot> frame(copies);
+            for (int a = 0; a < copies * perCopy; ++a) {
                 int id;
                 double v[9];
                 f >> id;
                 for (double& x : v) f >> x;
-                Vec3 x(v[0], v[1], v[2]), vel(v[3], v[4], v[5]), w(v[6], v[7], v[8]);
-                if (id == 1) s.x1 = x, s.v1 = vel, s.w1 = w;
+                const int copy = (id - 1) / perCopy;
+                if (!f || copy < 0 || copy >= copies) throw std::runtime_error("bad dump " + file.string());
+                Snapshot& s = frame[copy];
+                s.time = step * c.dt;
+                Vec3 x(v[0], v[1], v[2] - copyOffset(c, copy, copies)), vel(v[3], v[4], v[5]), w(v[6], v[7], v[8]);
+                if ((id - 1) % perCopy == 0) s.x1 = x, s.v1 = vel, s.w1 = w;
                 else s.x2 = x, s.v2 = vel, s.w2 = w;
             }
-            if (!f) throw std::runtime_error("truncated dump " + file.string());
-            frames.push_back(s);
+            for (int k = 0; k < copies; ++k) out[k].frames.push_back(frame[k]);
         }
     }
-    return frames;
+    return out;
 }
 
 }  // namespace
@@ -171,56 +182,68 @@ std::string runScript(const std::string& script, const RunOptions& o)
     return std::string((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
 }
 
-std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra)
+std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra,
+                           const std::vector<double>& phases)
 {
-    const Snapshot s = initialState(c, initialGap(c, o, kApproachSteps));
+    const std::vector<double> ph = phases.empty() ? std::vector<double>{o.phase} : phases;
+    const int copies = static_cast<int>(ph.size());
     std::ostringstream in;
-    in << setup(c, o) << "create_box 2 box\n";
-    auto atom = [&](int id, const Vec3& x, const Vec3& v, const Vec3& w, double r, double rho) {
+    in << setup(c, o, copies) << "create_box 2 box\n";
+    int id = 0;
+    auto atom = [&](const Vec3& x, const Vec3& v, const Vec3& w, double r, double rho) {
         in << "create_atoms 1 single " << num(x.x()) << " " << num(x.y()) << " " << num(x.z()) << " units box\n"
-           << "set atom " << id << " diameter " << num(2 * r) << " density " << num(rho) << " vx " << num(v.x())
+           << "set atom " << ++id << " diameter " << num(2 * r) << " density " << num(rho) << " vx " << num(v.x())
            << " vy " << num(v.y()) << " vz " << num(v.z()) << " omegax " << num(w.x()) << " omegay "
            << num(w.y()) << " omegaz " << num(w.z()) << "\n";
     };
-    atom(1, s.x1, s.v1, s.w1, c.radius1, c.density1);
-    if (!c.isWall()) atom(2, s.x2, s.v2, s.w2, c.radius2, c.density2);
+    for (int k = 0; k < copies; ++k) {
+        const Snapshot s = initialState(c, initialGap(c, ph[k], kApproachSteps));
+        const Vec3 shift(0, 0, copyOffset(c, k, copies));
+        atom(s.x1 + shift, s.v1, s.w1, c.radius1, c.density1);
+        if (!c.isWall()) atom(s.x2 + shift, s.v2, s.w2, c.radius2, c.density2);
+    }
     in << physics(c) << extra;
     return in.str();
 }
 
-Trajectory runLiggghts(const Case& c, const RunOptions& o)
+std::vector<Trajectory> runLiggghts(const Case& c, const RunOptions& o, const std::vector<double>& phases)
 {
     const fs::path dir = o.workdir.empty() ? fs::temp_directory_path() / "collide" : fs::path(o.workdir);
     fs::create_directories(dir);
     fs::remove(dir / "traj.dump");
-    if (c.geometry == Geometry::MeshWall) writePlaneStl(dir / "plane.stl", 5.0 * c.radius1);
+    const int copies = static_cast<int>(phases.size());
+    if (c.geometry == Geometry::MeshWall)
+        writePlaneStl(dir / "plane.stl", 5.0 * c.radius1, 5.0 * c.radius1 + 0.5 * copies * copySpacing(c));
 
     const int steps = totalSteps(c);
     if (o.restartAfterContactSteps < 0) {
-        std::ofstream(dir / "in.collision") << collisionInput(c, o, "run " + std::to_string(steps) + "\n");
+        std::ofstream(dir / "in.collision") << collisionInput(c, o, "run " + std::to_string(steps) + "\n", phases);
         run(launcher(o) + " -in in.collision -log log.collision", dir, "collision");
-        return {readDump(dir / "traj.dump", c)};
+        return readDump(dir / "traj.dump", c, copies);
     }
+    if (copies != 1) throw std::invalid_argument("a restart check runs one copy");
 
     // Interrupted run: stop mid-contact, write a restart, continue from it.
     const int first = kApproachSteps + o.restartAfterContactSteps;
     std::ofstream(dir / "in.first") << collisionInput(
-        c, o, "run " + std::to_string(first) + "\nwrite_restart collision.restart\n");
+        c, o, "run " + std::to_string(first) + "\nwrite_restart collision.restart\n", phases);
     run(launcher(o) + " -in in.first -log log.first", dir, "first");
-    std::vector<Snapshot> frames = readDump(dir / "traj.dump", c);
+    std::vector<Snapshot> frames = readDump(dir / "traj.dump", c, 1)[0].frames;
 
     std::ostringstream second;
-    second << setup(c, o) << "read_restart collision.restart\n" << physics(c);
+    second << setup(c, o, 1) << "read_restart collision.restart\n" << physics(c);
     second << "run " << steps - first << "\n";
     std::ofstream(dir / "in.second") << second.str();
     fs::rename(dir / "traj.dump", dir / "traj.first.dump");
     run(launcher(o) + " -in in.second -log log.second", dir, "second");
-    std::vector<Snapshot> rest = readDump(dir / "traj.dump", c);
+    std::vector<Snapshot> rest = readDump(dir / "traj.dump", c, 1)[0].frames;
     // the continuation's first frame repeats the restart state
     if (!rest.empty()) rest.erase(rest.begin());
     frames.insert(frames.end(), rest.begin(), rest.end());
-    return {frames};
+    return {Trajectory{frames}};
 }
+
+Trajectory runLiggghts(const Case& c, const RunOptions& o) { return runLiggghts(c, o, {o.phase})[0]; }
 
 Outcome measure(const Case& c, const Trajectory& t)
 {

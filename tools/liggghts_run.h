@@ -21,8 +21,10 @@ struct RunOptions {
     int restartAfterContactSteps = -1;
 };
 
-// The LIGGGHTS input for a case.
-std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra = "");
+// The LIGGGHTS input for a case: one independent copy of the impact per
+// contact-start phase (default: o.phase alone), side by side along z.
+std::string collisionInput(const Case& c, const RunOptions& o, const std::string& extra = "",
+                           const std::vector<double>& phases = {});
 
 struct Trajectory {
     std::vector<Snapshot> frames;  // one per step, first frame before contact
@@ -30,6 +32,9 @@ struct Trajectory {
 
 // Runs LIGGGHTS; throws std::runtime_error with the tail of its output on failure.
 Trajectory runLiggghts(const Case& c, const RunOptions& o);
+
+// All phases in one run: one trajectory per phase, in their order.
+std::vector<Trajectory> runLiggghts(const Case& c, const RunOptions& o, const std::vector<double>& phases);
 
 // Outcome measured from a LIGGGHTS trajectory, with the same definitions as
 // the reference (duration = steps with positive overlap times dt).

@@ -141,6 +141,14 @@ inline Vec3 pourninTangentialForce(TangentialState& s, const Vec3& n, const Vec3
 // = 2/pi for e = 1. The same holds for the tangential oscillator with et.
 // ---------------------------------------------------------------------------
 
+// The same for any oscillator with stiffness k [1/s^2] and damping c [1/s]
+// per unit mass (w0^2 = k, beta = c/2).
+inline double criticalTimestepOf(double k, double c)
+{
+    const double beta = 0.5 * c;
+    return 2.0 * (std::sqrt(beta * beta + k) - beta) / k;
+}
+
 inline double criticalTimestep(double tc, double e)
 {
     const double L = -std::log(e);
@@ -168,50 +176,6 @@ inline double continuousRestitution(double tc, double en, bool limitForce)
     if (beta < w0 / std::sqrt(2.0))
         return std::exp(-(beta / w) * (kPi - std::atan(2.0 * beta * w / (w * w - beta * beta))));
     return std::exp(-(beta / w) * std::atan(2.0 * beta * w / (beta * beta - w * w)));
-}
-
-// Outcome of a head-on collision integrated by the LIGGGHTS recurrence.
-struct DiscreteCollision {
-    double restitution;  // averaged over the phase at which contact starts
-    double duration;     // [s], averaged likewise (steps with overlap > 0)
-    double peakOverlap;  // largest sampled overlap per unit approach speed [s]
-};
-
-// Integrates the normal relative motion of one binary contact exactly as
-// LIGGGHTS does (see above); the first overlapping step has overlap
-// phase * v0 * dt, phase in (0, 1]. Linear law: the outcome does not depend
-// on the impact speed or the mass.
-inline DiscreteCollision discreteCollisionAtPhase(double tc, double en, double dt, bool limitForce,
-                                                  double phase)
-{
-    const UnitCoefficients u = pourninUnitCoefficients(tc, en, 1.0);
-    const Coefficients c{u.kn, u.cn, 0.0, 0.0};  // meff = 1
-    const int maxSteps = static_cast<int>(50.0 * tc / dt) + 100;
-    double x = phase * dt;  // overlap; v0 = 1
-    double v = 1.0;         // overlap rate at the half step (constant before contact)
-    int steps = 0;
-    double peak = x;
-    while (x > 0.0 && steps < maxSteps) {
-        v -= dt * normalForce(c, x, v, limitForce);
-        x += dt * v;
-        peak = std::max(peak, x);
-        ++steps;
-    }
-    return {-v, steps * dt, peak};
-}
-
-// The same, averaged over `phases` evenly spread start phases.
-inline DiscreteCollision discreteCollision(double tc, double en, double dt, bool limitForce,
-                                           int phases = 32)
-{
-    DiscreteCollision mean{0.0, 0.0, 0.0};
-    for (int p = 0; p < phases; ++p) {
-        const DiscreteCollision d = discreteCollisionAtPhase(tc, en, dt, limitForce, (p + 0.5) / phases);
-        mean.restitution += d.restitution / phases;
-        mean.duration += d.duration / phases;
-        mean.peakOverlap += d.peakOverlap / phases;
-    }
-    return mean;
 }
 
 }  // namespace viscoelastic
