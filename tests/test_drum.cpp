@@ -237,3 +237,36 @@ TEST_F(SmallDrum, RestartWithAnotherMeshReadsThatMesh)
     EXPECT_NE(r.output.find("mesh drum90 containing 180 triangle(s)"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("drum_L6_N90.stl) is required, but data will be taken from restart"), std::string::npos);
 }
+
+// The benchmarks time our model against stock hooke/stiffness fed the same
+// constants (tools/stock_equivalent): for monodisperse beads the two must
+// move the settled bed identically. Control: stock constants for another en
+// must not.
+TEST_F(SmallDrum, StockHookeWithTheSameConstantsMovesTheBedIdentically)
+{
+    ASSERT_EQ(run.status, 0);
+    const std::string mass = "3.5342917352885173e-05,0";
+    const std::string same = std::string(STOCK_EQUIVALENT) +
+                             " --tc 1e-4,1e-4,1e-4,1e-4 --et 0.46,0.46,0.46,0.46 --mass " + mass;
+    for (const auto& [file, en] : {std::pair{"stock.in", "0.56"}, std::pair{"other.in", "0.50"}}) {
+        const Result r = shell(same + " --en " + en + ",0.46,0.46,0.46", dir);
+        ASSERT_EQ(r.status, 0) << r.output;
+        std::ofstream(dir / file) << r.output;
+    }
+    const std::string cont = kMpirun + LIGGGHTS_LAUNCHER +
+                             " -in inputs/drum.in -var fill 0.10 -var time 0.002 -var dumpdt 0.002"
+                             " -var start restart -var restart post/small.restart";
+    for (const char* r : {" -var name ours", " -var name stock -var model hooke -var stock stock.in",
+                          " -var name other -var model hooke -var stock other.in"}) {
+        const Result x = shell(cont + r, dir);
+        ASSERT_EQ(x.status, 0) << x.output;
+    }
+    // small.restart is written at step 3000; 200 steps later
+    auto last = [&](const std::string& name) { return drum::readSnapshot((dir / "post" / (name + "_3200.vtp")).string(), 0); };
+    const drum::Snapshot ours = last("ours");
+    const drum::Difference same_ = drum::compare(ours, last("stock"));
+    EXPECT_GT(same_.beads, 3000);
+    EXPECT_LE(same_.position, 1e-12);  // round-off: the force is the same arithmetic
+    EXPECT_LE(same_.velocity, 1e-9);
+    EXPECT_GT(drum::compare(ours, last("other")).velocity, 1e-6);
+}

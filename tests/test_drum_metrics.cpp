@@ -107,3 +107,20 @@ TEST(SteadyState, OvershootIsNotSteady)
     // cut at the midpoint the same series has not settled
     EXPECT_EQ(drum::steadyStart({std::vector<double>(angle.begin(), angle.begin() + 100)}), -1);
 }
+
+TEST(Compare, MatchesBeadsByIdAndReportsLargestDifferences)
+{
+    drum::Snapshot a, b;
+    a.id = {1, 2, 3};
+    b.id = {3, 1, 2};
+    a.position = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    b.position = {{2, 0, 0.003}, {0, 0, 0}, {1, 0.001, 0}};
+    a.velocity = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    b.velocity = {{0, 0, 0}, {0.5, 0, 0}, {0, 0, 0}};
+    const drum::Difference d = drum::compare(a, b);
+    EXPECT_EQ(d.beads, 3);
+    EXPECT_DOUBLE_EQ(d.position, 0.003);
+    EXPECT_DOUBLE_EQ(d.velocity, 0.5);
+    b.id = {4, 1, 2};
+    EXPECT_THROW(drum::compare(a, b), std::runtime_error);
+}

@@ -97,10 +97,14 @@ Snapshot readSnapshot(const std::string& file, double time)
     if (!radius) throw std::runtime_error(file + " has no array 'radius'");
     if (!force) throw std::runtime_error(file + " has no array 'f_force_shell[1-3]' (wall force; use store_force yes)");
 
+    vtkDataArray* id = pd->GetArray("id");
+    vtkDataArray* v = pd->GetArray("v");
+
     Snapshot s;
     s.time = time;
     const vtkIdType n = data->GetNumberOfPoints();
     s.position.resize(n), s.radius.resize(n), s.wallForce.resize(n);
+    if (id && v) s.id.resize(n), s.velocity.resize(n);
     for (vtkIdType i = 0; i < n; ++i) {
         double p[3], f[3];
         data->GetPoint(i, p);
@@ -108,8 +112,32 @@ Snapshot readSnapshot(const std::string& file, double time)
         s.position[i] = Eigen::Vector3d(p[0], p[1], p[2]);
         s.radius[i] = radius->GetTuple1(i);
         s.wallForce[i] = Eigen::Vector3d(f[0], f[1], f[2]);
+        if (id && v) {
+            double w[3];
+            v->GetTuple(i, w);
+            s.id[i] = static_cast<long>(id->GetTuple1(i));
+            s.velocity[i] = Eigen::Vector3d(w[0], w[1], w[2]);
+        }
     }
     return s;
+}
+
+Difference compare(const Snapshot& a, const Snapshot& b)
+{
+    if (a.id.empty() || b.id.empty()) throw std::runtime_error("compare needs the arrays 'id' and 'v'");
+    std::map<long, size_t> index;
+    for (size_t i = 0; i < b.id.size(); ++i) index[b.id[i]] = i;
+    if (a.id.size() != b.id.size()) throw std::runtime_error("the snapshots hold different numbers of beads");
+    Difference d;
+    for (size_t i = 0; i < a.id.size(); ++i) {
+        const auto it = index.find(a.id[i]);
+        if (it == index.end()) throw std::runtime_error("bead " + std::to_string(a.id[i]) + " is missing in one snapshot");
+        Eigen::Vector3d dx = a.position[i] - b.position[it->second];
+        d.position = std::max(d.position, dx.norm());
+        d.velocity = std::max(d.velocity, (a.velocity[i] - b.velocity[it->second]).norm());
+    }
+    d.beads = static_cast<int>(a.id.size());
+    return d;
 }
 
 namespace {

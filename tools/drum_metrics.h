@@ -16,6 +16,8 @@ struct Snapshot {
     std::vector<Eigen::Vector3d> position;
     std::vector<double> radius;
     std::vector<Eigen::Vector3d> wallForce;
+    std::vector<long> id;                     // when the file has them
+    std::vector<Eigen::Vector3d> velocity;    // likewise
 };
 
 struct Metrics {
@@ -35,6 +37,15 @@ Metrics measure(const Snapshot& s, double omegaSign);
 // Reads a LIGGGHTS custom/vtk bead file (.vtp or legacy .vtk) with arrays
 // radius and f_force_shell[1-3].
 Snapshot readSnapshot(const std::string& file, double time);
+
+// Largest position and velocity differences between the beads of two
+// snapshots, matched by id (both need ids and velocities); throws if their
+// bead sets differ.
+struct Difference {
+    int beads = 0;
+    double position = 0.0, velocity = 0.0;  // [m], [m/s]
+};
+Difference compare(const Snapshot& a, const Snapshot& b);
 
 // Steady state: the sample index from which every metric has settled, by
 // the MSER rule (White 1997) applied to each series; -1 when a series'

@@ -170,8 +170,18 @@ int main(int argc, char** argv)
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
     t->add_option("--out", out, "output prefix")->capture_default_str();
     t->add_option("files", files, "<prefix>_average.csv files")->required();
+    std::string fileA, fileB;
+    CLI::App* c = app.add_subcommand("compare", "largest position and velocity differences of two snapshots (by bead id)");
+    c->add_option("a", fileA, "first .vtp")->required()->check(CLI::ExistingFile);
+    c->add_option("b", fileB, "second .vtp")->required()->check(CLI::ExistingFile);
     CLI11_PARSE(app, argc, argv);
     try {
+        if (*c) {
+            const drum::Difference d = drum::compare(drum::readSnapshot(fileA, 0.0), drum::readSnapshot(fileB, 0.0));
+            std::printf("beads %d, max position difference %.6g m, max velocity difference %.6g m/s\n", d.beads,
+                        d.position, d.velocity);
+            return 0;
+        }
         return *s ? series(prefix, seriesOut, dt, rpm, skip, until) : table(out, files);
     } catch (const std::exception& e) {
         std::cerr << "drum_metrics: " << e.what() << "\n";

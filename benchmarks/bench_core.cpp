@@ -1,0 +1,81 @@
+// Per-contact cost of the physics core (Google Benchmark): what one contact
+// costs the LIGGGHTS model beyond LIGGGHTS' own bookkeeping. Contacts are
+// drawn at random (seeded) so nothing folds to a constant; the baseline is
+// the same arithmetic with absolute constants, as stock hooke/stiffness
+// (absolute_damping on) does it, in the same binary and invocation.
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "core/viscoelastic.h"
+
+namespace {
+
+using namespace viscoelastic;
+
+struct Contact {
+    double meff, overlap, rate;
+    Vec3 n, vt;
+    TangentialState state;
+};
+
+std::vector<Contact> contacts(size_t count)
+{
+    std::mt19937_64 rng(15485863);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Contact> c(count);
+    for (Contact& k : c) {
+        k.meff = 1.767e-5 * (1.0 + 0.1 * u(rng));
+        k.overlap = 1e-5 * (1.0 + 0.5 * u(rng));
+        k.rate = 0.1 * u(rng);
+        k.n = Vec3(u(rng), u(rng), u(rng)).normalized();
+        k.vt = Vec3(u(rng), u(rng), u(rng)) * 0.05;
+        k.vt -= k.vt.dot(k.n) * k.n;
+    }
+    return c;
+}
+
+constexpr size_t kContacts = 4096;
+const UnitCoefficients kUnit = pourninUnitCoefficients(1e-4, 0.56, 0.46);
+
+void NormalViscoelastic(benchmark::State& state)
+{
+    std::vector<Contact> c = contacts(kContacts);
+    for (auto _ : state)
+        for (Contact& k : c) {
+            const Coefficients co = scaled(kUnit, k.meff);
+            benchmark::DoNotOptimize(normalForce(co, k.overlap, k.rate, false));
+        }
+    state.SetItemsProcessed(state.iterations() * kContacts);
+}
+
+void NormalAbsoluteConstants(benchmark::State& state)
+{
+    std::vector<Contact> c = contacts(kContacts);
+    const Coefficients abs = scaled(kUnit, 1.767e-5);
+    for (auto _ : state)
+        for (Contact& k : c) benchmark::DoNotOptimize(abs.kn * k.overlap + abs.cn * k.rate);
+    state.SetItemsProcessed(state.iterations() * kContacts);
+}
+
+void ContactPournin(benchmark::State& state)
+{
+    std::vector<Contact> c = contacts(kContacts);
+    for (auto _ : state)
+        for (Contact& k : c) {
+            const Coefficients co = scaled(kUnit, k.meff);
+            const double fn = normalForce(co, k.overlap, k.rate, false);
+            const Vec3 ft = pourninTangentialForce(k.state, k.n, k.vt, co.kt, co.ct, frictionLimit(0.5, fn), 1e-5,
+                                                   true);
+            benchmark::DoNotOptimize(ft);
+        }
+    state.SetItemsProcessed(state.iterations() * kContacts);
+}
+
+}  // namespace
+
+BENCHMARK(NormalViscoelastic);
+BENCHMARK(NormalAbsoluteConstants);
+BENCHMARK(ContactPournin);
+BENCHMARK_MAIN();
