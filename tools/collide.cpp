@@ -269,6 +269,27 @@ int runSweepAngle(Options& o, const std::vector<double>& angles, double speed)
     return 0;
 }
 
+// The integrator's recurrence alone (no LIGGGHTS): restitution averaged over
+// the contact-start phase and its largest single-phase value, against dt/tc,
+// up to and past the stability limit (e > 1: the contact creates energy).
+int runRecurrence(const Options& o, const std::vector<double>& ratios)
+{
+    const viscoelastic::ContactParameters& p = o.c.params;
+    std::printf("dt_over_tc,restitution_mean,restitution_max,duration_steps,stability_limit_dt_over_tc\n");
+    for (double r : ratios) {
+        const double dt = p.tc * r;
+        const viscoelastic::UnitCoefficients u = viscoelastic::pourninUnitCoefficients(p);
+        const viscoelastic::DiscreteCollision mean = viscoelastic::phaseAveragedCollision(u, dt, o.c.limitForce);
+        double emax = 0.0;
+        for (int k = 0; k < 256; ++k)
+            emax = std::max(emax, viscoelastic::discreteCollisionAtPhase(u, dt, o.c.limitForce, (k + 0.5) / 256)
+                                      .outcome.restitution);
+        std::printf("%.4f,%.6f,%.6f,%.3f,%.4f\n", r, mean.restitution, emax, mean.duration / dt,
+                    viscoelastic::criticalTimestep(p.tc, p.en) / p.tc);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -299,8 +320,17 @@ int main(int argc, char** argv)
     ang->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
     ang->add_option("--png", o.png, "write the chart as PNG");
 
+    std::vector<double> fractions{0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
+    CLI::App* rec = app.add_subcommand("recurrence", "the integrator's recurrence only: restitution vs dt/tc, CSV");
+    rec->add_option("--en", o.c.params.en, "normal restitution")->check(CLI::Range(1e-6, 1.0))->capture_default_str();
+    rec->add_option("--tc", o.c.params.tc, "contact duration [s]")->check(CLI::PositiveNumber)->capture_default_str();
+    rec->add_option("--limit-force", o.limitForce, "forbid attraction: on | off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    rec->add_option("--dt-over-tc", fractions, "dt/tc values")->delimiter(',')->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
     try {
+        if (*rec) { o.finish(); return runRecurrence(o, fractions); }
         if (*one) return runCase(o);
         if (*dt) { o.phases = std::max(o.phases, 1); return runSweepDt(o, ratios); }
         return runSweepAngle(o, angles, speed);
