@@ -52,8 +52,7 @@ for en in ${ens//,/ }; do
       total=$(sed -n 's/^column: \([0-9]*\) beads, dt.*/\1/p' "$log" | head -1)
       ke=$(sed -n 's/^column: done, .* ke \([^ ]*\) J/\1/p' "$log")
       guard=none
-      grep -q "exceeds the stability limit" "$log" && guard=error
-      [ "$guard" = none ] && grep -q "beads with many simultaneous contacts may become unstable" "$log" && guard=warning
+      grep -q "exceeds the stable timestep" "$log" && guard=error
       if [ "$status" = ok ]; then
         awk -v k="$kept" -v t="$total" -v e="$ke" 'BEGIN {exit !(k < t || e > 1e-3)}' && status=failed
       fi
