@@ -40,7 +40,6 @@ if [ -z "$restart" ]; then
 fi
 
 # Table 3.1, thesis conventions (as inputs/drum.in): type 1 beads, type 2 drum.
-bead_mass=$(awk 'BEGIN {printf "%.17g", 4.0 / 3.0 * atan2(0, -1) * 0.0015^3 * 2500}')
 "$stock_equivalent" --tc 1e-4,1e-4,1e-4,1e-4 --en 0.56,0.46,0.46,0.46 --et 0.46,0.46,0.46,0.46 \
   --mass "$bead_mass,0" > post/bench/stock.in
 

@@ -27,7 +27,6 @@ source "$(dirname "$0")/../tools/drum_common.sh"
 collide=${COLLIDE:-collide}
 stock_equivalent=${STOCK_EQUIVALENT:-stock_equivalent}
 mkdir -p "$out" post/stability
-bead_mass=$(awk 'BEGIN {printf "%.17g", 4.0 / 3.0 * atan2(0, -1) * 0.0015^3 * 2500}')
 
 echo "en,dt_over_tc,restitution_mean,restitution_max,duration_steps,stability_limit_dt_over_tc" > "$out/stability_binary.csv"
 echo "en,dt_over_tc,model,status,beads_kept,beads,ke_final_J,guard" > "$out/stability_column.csv"

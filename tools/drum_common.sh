@@ -16,3 +16,6 @@ drum_dt=$(grep -E '^variable dt ' "$(dirname "${BASH_SOURCE[0]}")/../inputs/drum
 median() {  # of the numbers on stdin, one per line
   sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'
 }
+
+# Mass of a Table 3.1 glass bead (3 mm, 2500 kg/m^3), as LIGGGHTS computes it.
+bead_mass=$(awk 'BEGIN {printf "%.17g", 4.0 / 3.0 * atan2(0, -1) * 0.0015^3 * 2500}')
