@@ -1,0 +1,66 @@
+# The drum slab in YADE (ViscElMat + Law2_ScGeom_ViscElPhys_Basic, YADE's own
+# mixing rules), from a LIGGGHTS state: same beads, same drum (180 facets,
+# 450 mm), same dt; times a given number of steps.
+#
+#   yade -n -x -jTHREADS benchmarks/yade/drum_yade.py BEADS.csv period=0.012 steps=500 rpm=21 dt=1e-5
+#
+# BEADS.csv: from benchmarks/yade/vtp_to_csv.py. Prints one line
+# "yade: N beads, S steps, T s, P particle-steps/s". YADE's periodic collider
+# needs bodies under half the period: 3 mm beads need a period above 6 mm,
+# and the drum facets are cut along the axis into pieces of at most period/3.
+import math
+import sys
+import time
+
+args = sys.argv[1:]
+kv = dict(a.split("=", 1) for a in args[1:])
+period = float(kv.get("period", "0.012"))
+steps = int(kv.get("steps", "500"))
+rpm = float(kv.get("rpm", "21"))
+dt = float(kv.get("dt", "1e-5"))
+R, segments, c = 0.225, 180, 0.5  # drum radius, facets around, drum axis at y = z = c
+
+O.periodic = True
+O.cell.setBox(period, 2 * c, 2 * c)
+# Table 3.1; YADE averages tc, en, et of the two materials and takes the smaller friction angle
+glass = O.materials.append(ViscElMat(tc=1e-4, en=0.56, et=0.46, frictionAngle=math.atan(0.5), density=2500))
+steel = O.materials.append(ViscElMat(tc=1e-4, en=0.46, et=0.46, frictionAngle=math.atan(0.95), density=2500))
+
+pieces = 3
+drum = []
+for k in range(segments):
+    a0, a1 = 2 * math.pi * k / segments, 2 * math.pi * (k + 1) / segments
+    for j in range(pieces):
+        x0, x1 = period * j / pieces, period * (j + 1) / pieces
+        p = [Vector3(x, c + R * math.cos(a), c + R * math.sin(a)) for x, a in ((x0, a0), (x1, a0), (x1, a1), (x0, a1))]
+        drum.append(O.bodies.append(facet([p[0], p[1], p[2]], material=steel, fixed=True)))
+        drum.append(O.bodies.append(facet([p[0], p[2], p[3]], material=steel, fixed=True)))
+
+n = 0
+with open(args[0]) as f:
+    next(f)
+    for line in f:
+        r, x, y, z, vx, vy, vz, wx, wy, wz = map(float, line.split(","))
+        b = O.bodies.append(sphere((x, y + c, z + c), r, material=glass))
+        O.bodies[b].state.vel = Vector3(vx, vy, vz)
+        O.bodies[b].state.angVel = Vector3(wx, wy, wz)
+        n += 1
+
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()],
+                    [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]),
+    RotationEngine(rotationAxis=(1, 0, 0), rotateAroundZero=True, zeroPoint=(0, c, c),
+                   angularVelocity=2 * math.pi * rpm / 60, ids=drum),
+    NewtonIntegrator(damping=0, gravity=(0, 0, -9.81)),
+]
+O.dt = dt
+O.run(20, True)  # first steps build the collider's lists
+t0 = time.time()
+O.run(steps, True)
+elapsed = time.time() - t0
+lost = sum(1 for b in O.bodies if isinstance(b.shape, Sphere) and
+           math.hypot(b.state.pos[1] - c, b.state.pos[2] - c) > R)
+print("yade: %d beads, %d steps, %.3f s, %.4g particle-steps/s, %d outside the drum"
+      % (n, steps, elapsed, n * steps / elapsed, lost))
