@@ -1,14 +1,20 @@
 # The drum slab in YADE (ViscElMat + Law2_ScGeom_ViscElPhys_Basic, YADE's own
 # mixing rules), from a LIGGGHTS state: same beads, same drum (180 facets,
-# 450 mm), same dt; times a given number of steps.
+# 450 mm), same dt; times `rounds` segments of `steps` steps.
 #
-#   yade -n -x -jTHREADS benchmarks/yade/drum_yade.py BEADS.csv period=0.012 steps=500 rpm=21 dt=1e-5
+#   yade -n -x -jTHREADS benchmarks/yade/drum_yade.py BEADS.csv period=0.012 steps=500 rpm=21 dt=1e-5 \
+#        [rounds=1] [before=COMMAND]
 #
-# BEADS.csv: from benchmarks/yade/vtp_to_csv.py. Prints one line
-# "yade: N beads, S steps, T s, P particle-steps/s". YADE's periodic collider
+# BEADS.csv: from benchmarks/yade/vtp_to_csv.py. Prints per round
+# "yade: round I, N beads, S steps, T s, P particle-steps/s, K outside the drum".
+# COMMAND (run through the shell with the round number appended, before each
+# round) lets a peer run interleave with YADE's rounds: YADE's first step in a
+# periodic cell insertion-sorts every bound (minutes for 30,000 beads), so
+# one YADE process serves all rounds. YADE's periodic collider
 # needs bodies under half the period: 3 mm beads need a period above 6 mm,
 # and the drum facets are cut along the axis into pieces of at most period/3.
 import math
+import subprocess
 import sys
 import time
 
@@ -36,15 +42,18 @@ for k in range(segments):
         drum.append(O.bodies.append(facet([p[0], p[1], p[2]], material=steel, fixed=True)))
         drum.append(O.bodies.append(facet([p[0], p[2], p[3]], material=steel, fixed=True)))
 
-n = 0
+# one append of the whole list: appending bodies one by one is quadratic here
+beads = []
 with open(args[0]) as f:
     next(f)
     for line in f:
         r, x, y, z, vx, vy, vz, wx, wy, wz = map(float, line.split(","))
-        b = O.bodies.append(sphere((x, y + c, z + c), r, material=glass))
-        O.bodies[b].state.vel = Vector3(vx, vy, vz)
-        O.bodies[b].state.angVel = Vector3(wx, wy, wz)
-        n += 1
+        b = sphere((x, y + c, z + c), r, material=glass)
+        b.state.vel = Vector3(vx, vy, vz)
+        b.state.angVel = Vector3(wx, wy, wz)
+        beads.append(b)
+O.bodies.append(beads)
+n = len(beads)
 
 O.engines = [
     ForceResetter(),
@@ -57,10 +66,13 @@ O.engines = [
 ]
 O.dt = dt
 O.run(20, True)  # first steps build the collider's lists
-t0 = time.time()
-O.run(steps, True)
-elapsed = time.time() - t0
-lost = sum(1 for b in O.bodies if isinstance(b.shape, Sphere) and
-           math.hypot(b.state.pos[1] - c, b.state.pos[2] - c) > R)
-print("yade: %d beads, %d steps, %.3f s, %.4g particle-steps/s, %d outside the drum"
-      % (n, steps, elapsed, n * steps / elapsed, lost))
+for i in range(1, int(kv.get("rounds", "1")) + 1):
+    if "before" in kv:
+        subprocess.run("%s %d" % (kv["before"], i), shell=True, check=True)
+    t0 = time.time()
+    O.run(steps, True)
+    elapsed = time.time() - t0
+    lost = sum(1 for b in O.bodies if isinstance(b.shape, Sphere) and
+               math.hypot(b.state.pos[1] - c, b.state.pos[2] - c) > R)
+    print("yade: round %d, %d beads, %d steps, %.3f s, %.4g particle-steps/s, %d outside the drum"
+          % (i, n, steps, elapsed, n * steps / elapsed, lost), flush=True)
