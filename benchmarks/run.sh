@@ -9,7 +9,8 @@
 #     accuracy      accuracy_cost.sh: dt = tc/5 ... tc/81, cost against two-body and drum errors
 #                   (same RESTART, or the slab cost settled), ~40 min
 #     multicontact  multicontact.sh: the dense column with exactRestitution, ~10 min
-#     stability     stability.sh: dt/tc swept past failure, binary collision and dense column
+#     stability     stability.sh and stability_drum.sh: dt/tc swept past failure, binary
+#                   collision, dense column and the drum (same RESTART), ~40 min
 #     reductions    reductions.sh: 6 / 12 / 24 mm periods from the grid, ~1 h
 #     peers         yade_collide.sh and peers.sh: YADE on the same collisions and drum state
 #                   (the 12 mm state of reductions), ~15 min
@@ -45,6 +46,9 @@ for s in "${sections[@]}"; do
     stability)
       echo "benchmarks: stability ..."
       benchmarks/stability.sh --out "$results"
+      benchmarks/stability_drum.sh --restart "${RESTART:-post/bench/slab.restart}" --out "$results"
+      benchmarks/stability_drum.sh --restart "${RESTART:-post/bench/slab.restart}" --out "$results" --append \
+        --runs 0.3:hooke --fractions 0.1,0.21,0.22,0.23,0.24
       ;;
     reductions)
       echo "benchmarks: reductions ..."

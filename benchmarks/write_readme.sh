@@ -7,10 +7,11 @@ r=results
 
 chart_stability() {
   gnuplot <<EOF
-set terminal pngcairo size 1300,520
+set terminal pngcairo size $([ -f $r/stability_drum.csv ] && echo 1900 || echo 1300),520
 set output '$r/stability.png'
 set datafile separator ','
-set multiplot layout 1,2
+drum = $([ -f $r/stability_drum.csv ] && echo 1 || echo 0)
+set multiplot layout 1,$([ -f $r/stability_drum.csv ] && echo 3 || echo 2)
 set grid
 set xlabel 'dt / tc'
 set title 'binary collision (the integrator recurrence)'
@@ -26,6 +27,14 @@ set logscale y
 set yrange [1e-9:1]
 plot for [en in "0.3 0.56 0.9"] '$r/stability_column.csv' using (\$1 == en && strcol(3) eq 'hooke' ? \$2 : 1/0):7 with linespoints lw 2 title 'en '.en, \
      1e-3 with lines lc rgb 'black' dt 3 title 'failure threshold'
+if (drum) {
+  set title 'drum (16,336 beads), stock hooke/stiffness'
+  set key bottom right
+  set ylabel 'kinetic energy after 0.03 s [J]; stopped runs at 10 J'
+  set yrange [1e-3:20]
+  plot for [en in "0.3 0.9 table"] '< grep "^'.en.',.*,hooke," $r/stability_drum.csv | sort -u | sort -t, -k2,2g' using 2:(strcol(4) eq 'stopped' ? 10 : \$7) with linespoints lw 2 title (en eq 'table' ? 'Table 3.1 (0.56 / 0.46)' : 'en '.en), \
+       2 * 0.0075 with lines lc rgb 'black' dt 3 title 'failure threshold (2x the tc/10 energy)'
+}
 unset multiplot
 EOF
 }
@@ -264,21 +273,29 @@ PY
     echo "dt/tc swept past failure for en = 0.3, 0.56, 0.9 (tc = 1e-4 s). Binary collision: the"
     echo "integrator's recurrence (LIGGGHTS follows it to round-off). Dense column: \`inputs/column.in\`,"
     echo "2009 beads settled at tc/10, then 0.05 s at each dt, with stock hooke/stiffness fed our constants"
-    echo "(no guard) and with \`model viscoelastic\` (guard). Failure: beads leave the box or the kinetic"
+    echo "(no guard) and with \`model viscoelastic\` (guard); the drum likewise (below). Failure: beads leave the box or the kinetic"
     echo "energy of the settled column ends above 1e-3 J. The guard stops runs above half the binary limit"
     echo '(`model viscoelastic` and stock runs are otherwise identical: same kinetic energies below).'
     echo
     echo "![stability](results/stability.png)"
     echo
-    echo "| en | binary limit (Jury) dt/tc | binary: mean restitution > 1 from dt/tc | column (stock) fails from dt/tc | guard ERROR from dt/tc | guard stops before failure |"
-    echo "|---|---|---|---|---|---|"
+    echo "| en | binary limit (Jury) dt/tc | binary: mean restitution > 1 from dt/tc | column (stock) fails from dt/tc | drum (stock) fails from dt/tc | guard: ERROR above dt/tc (half the limit) | guard ERROR in the column runs from dt/tc | guard stops before failure |"
+    echo "|---|---|---|---|---|---|---|---|"
     for en in $(cut -d, -f1 $r/stability_column.csv | tail -n +2 | sort -u); do
       lim=$(awk -F, -v e="$en" '$1 == e {print $6; exit}' $r/stability_binary.csv)
       egrow=$(awk -F, -v e="$en" '$1 == e && $3 > 1 {print $2; exit}' $r/stability_binary.csv)
       cfail=$(awk -F, -v e="$en" '$1 == e && $3 == "hooke" && $4 != "ok" {print $2; exit}' $r/stability_column.csv)
       ge=$(awk -F, -v e="$en" '$1 == e && $3 == "viscoelastic" && $8 == "error" {print $2; exit}' $r/stability_column.csv)
-      before=$(awk -v g="${ge:-9}" -v f="${cfail:-9}" -v b="${egrow:-9}" 'BEGIN {print (g < f && g < b) ? "yes" : "NO"}')
-      echo "| $en | $lim | ${egrow:-none} | ${cfail:-none} | ${ge:-none} | $before |"
+      # the drum's en 0.56 runs are Table 3.1's (beads 0.56, drum 0.46)
+      de=$en; [ "$en" = 0.56 ] && de=table
+      dfail=""
+      [ -f $r/stability_drum.csv ] && dfail=$(awk -F, -v e="$de" '$1 == e && $3 == "hooke" && $4 != "ok" && (m == "" || $2 < m) {m = $2} END {print m}' $r/stability_drum.csv)
+      # Table 3.1's drum pairs (en 0.46) set the drum's threshold for the 0.56 row
+      # half Jury's limit (README, timestep section); the drum's 0.56 row: its bead-drum pairs (en 0.46)
+      half() { awk -v e="$1" 'BEGIN {p = atan2(0, -1); l = log(e); printf "%.4g", (sqrt(p * p + 2 * l * l) + l) / (p * p + l * l)}'; }
+      hc=$(half "$en"); hd=$hc; [ "$en" = 0.56 ] && hd=$(half 0.46)
+      before=$(awk -v g="$hc" -v h="$hd" -v f="${cfail:-9}" -v b="${egrow:-9}" -v d="${dfail:-9}" 'BEGIN {print (g < f && g < b && h < d) ? "yes" : "NO"}')
+      echo "| $en | $lim | ${egrow:-none} | ${cfail:-none} | ${dfail:-none} | $hc$([ "$hd" != "$hc" ] && echo "; drum $hd (bead-drum en 0.46)") | ${ge:-none} | $before |"
     done
     echo
     echo "<details><summary>all column runs</summary>"
@@ -289,8 +306,21 @@ PY
     echo
     echo "</details>"
     echo
+    if [ -f $r/stability_drum.csv ]; then
+      echo "Drum: the settled 6 mm slab (16,336 beads, 21 rpm) continued for 0.03 s at each dt, stock"
+      echo "hooke/stiffness with en = 0.3 and 0.9 for every pair and with Table 3.1 (beads 0.56, drum 0.46;"
+      echo "the 0.56 row above), and \`model viscoelastic\` with Table 3.1. Failure: the run stops (beads leave"
+      echo "through the drum wall), beads are missing, or the kinetic energy ends above twice that at tc/10."
+      echo
+      echo "| en | dt/tc | model | status | beads kept | kinetic energy [J] | guard |"
+      echo "|---|---|---|---|---|---|---|"
+      tail -n +2 $r/stability_drum.csv | sort -u | sort -t, -k1,1 -k3,3 -k2,2g | awk -F, '{printf "| %s | %s | %s | %s | %s/%s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8}'
+      echo
+    fi
     echo '```sh'
     echo "benchmarks/stability.sh"
+    echo "benchmarks/stability_drum.sh --restart post/ramp/ramp_21rpm.restart"
+    echo "benchmarks/stability_drum.sh --restart post/ramp/ramp_21rpm.restart --runs 0.3:hooke --fractions 0.1,0.21,0.22,0.23,0.24 --append"
     echo '```'
   else
     echo "Not run yet: \`benchmarks/run.sh stability\`."
