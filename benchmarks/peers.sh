@@ -22,6 +22,9 @@ while [ $# -gt 0 ]; do
     *) echo "peers: unknown option $1 (see the header of $0)" >&2; exit 2 ;;
   esac
 done
+for t in yade pvpython; do
+  command -v "$t" > /dev/null || { echo "peers: needs $t (Debian: apt-get install yade paraview)" >&2; exit 2; }
+done
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/../tools/drum_common.sh"
 [ -f "$state.restart" ] || { echo "peers: $state.restart missing (run benchmarks/reductions.sh first)" >&2; exit 2; }

@@ -16,6 +16,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 collide=${COLLIDE:-collide}
+for t in yade; do
+  command -v "$t" > /dev/null || { echo "yade_collide: needs $t (Debian: apt-get install yade paraview)" >&2; exit 2; }
+done
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out" post/yade_collide
 yade -n -x "$here/yade/collide_yade.py" post/yade_collide/yade.csv "ratios=$ratios" "phases=$phases" \
