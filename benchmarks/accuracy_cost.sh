@@ -54,9 +54,9 @@ for i in $(seq 1 "$runs"); do
   for r in ${ratios//,/ }; do
     echo "accuracy_cost: timing round $i, tc/$r ..."
     log=post/accuracy/time_$r.log
-    "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var start restart -var restart "$restart" -var dt "$(dtof "$r")" \
-      -var time "$span" -var dumpdt 1 -var name "accuracy/time_$r" > "$log" 2>&1 || { tail -5 "$log" >&2; exit 1; }
-    echo "$r $(awk '/^Loop time of/ {t = $4} END {print t}' "$log")" >> post/accuracy/timings.txt
+    drum_run "$log" -var start restart -var restart "$restart" -var dt "$(dtof "$r")" \
+      -var time "$span" -var dumpdt 1 -var name "accuracy/time_$r"
+    echo "$r $(loop_time "$log")" >> post/accuracy/timings.txt
   done
 done
 beads=$(sed -n 's/^drum: done, \([0-9]*\) beads kept.*/\1/p' "post/accuracy/time_${ratios%%,*}.log")
@@ -69,9 +69,8 @@ for spec in $(for r in ${ratios//,/ }; do echo "$r:off"; done; for r in ${exact_
   tag=window_${r}_$ex
   echo "accuracy_cost: drum window ${window} s at tc/$r, exactRestitution $ex ..."
   rm -f post/accuracy/${tag}_*.vtp
-  "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var start restart -var restart "$restart" -var dt "$(dtof "$r")" \
-    -var exact "$ex" -var time "$window" -var dumpdt 0.005 -var name "accuracy/$tag" \
-    > "post/accuracy/$tag.log" 2>&1 || { tail -5 "post/accuracy/$tag.log" >&2; exit 1; }
+  drum_run "post/accuracy/$tag.log" -var start restart -var restart "$restart" -var dt "$(dtof "$r")" \
+    -var exact "$ex" -var time "$window" -var dumpdt 0.005 -var name "accuracy/$tag"
   "$metrics" series --prefix "post/accuracy/$tag" --dt "$(dtof "$r")" --rpm 21 > /dev/null
   # window averages: every snapshot after the shared start state
   awk -F, -v r="$r" -v ex="$ex" 'NR > 2 {

@@ -27,21 +27,18 @@ while [ $# -gt 0 ]; do
   esac
 done
 source "$(dirname "$0")/../tools/drum_common.sh"
-stock_equivalent=${STOCK_EQUIVALENT:-stock_equivalent}
 mpirun_for "$np"
 mkdir -p "$out" post/bench
 dt=$drum_dt
 
 if [ -z "$restart" ]; then
   echo "model_cost: settling a slab (1 s at 21 rpm from the grid) ..."
-  "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var time 1.0 -var dumpdt 1.0 -var name bench/slab \
-    > post/bench/slab.log 2>&1 || { tail -5 post/bench/slab.log >&2; exit 1; }
+  drum_run post/bench/slab.log -var time 1.0 -var dumpdt 1.0 -var name bench/slab
   restart=post/bench/slab.restart
 fi
 
 # Table 3.1, thesis conventions (as inputs/drum.in): type 1 beads, type 2 drum.
-"$stock_equivalent" --tc 1e-4,1e-4,1e-4,1e-4 --en 0.56,0.46,0.46,0.46 --et 0.46,0.46,0.46,0.46 \
-  --mass "$bead_mass,0" > post/bench/stock.in
+stock_for table > post/bench/stock.in
 
 run() {  # tag model steps dumps(yes|no) -> loop time [s] on stdout
   local tag=$1 model=$2 n=$3 dumps=$4
@@ -49,17 +46,15 @@ run() {  # tag model steps dumps(yes|no) -> loop time [s] on stdout
   time=$(awk -v n="$n" -v dt="$dt" 'BEGIN {printf "%.10g", n * dt}')
   dumpdt=$time
   [ "$dumps" = yes ] || dumpdt=$(awk -v t="$time" 'BEGIN {printf "%.10g", 10 * t}')
-  "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var start restart -var restart "$restart" -var rpm 21 \
-    -var time "$time" -var dumpdt "$dumpdt" -var model "$model" -var stock post/bench/stock.in \
-    -var name "bench/$tag" > "post/bench/$tag.log" 2>&1 || { tail -5 "post/bench/$tag.log" >&2; exit 1; }
-  awk '/^Loop time of/ {t = $4} END {print t}' "post/bench/$tag.log"
+  drum_run "post/bench/$tag.log" -var start restart -var restart "$restart" -var rpm 21 \
+    -var time "$time" -var dumpdt "$dumpdt" -var model "$model" -var stock post/bench/stock.in -var name "bench/$tag"
+  loop_time "post/bench/$tag.log"
 }
 
 echo "model_cost: force check over $check steps ..."
 run check_viscoelastic viscoelastic "$check" yes > /dev/null
 run check_hooke hooke "$check" yes > /dev/null
-last() { ls post/bench/"$1"_*.vtp | sed 's/.*_\([0-9]*\)\.vtp/\1 &/' | sort -n | tail -1 | cut -d' ' -f2; }
-agreement=$("$metrics" compare "$(last check_viscoelastic)" "$(last check_hooke)")
+agreement=$("$metrics" compare "$(last_snapshot post/bench/check_viscoelastic)" "$(last_snapshot post/bench/check_hooke)")
 echo "model_cost: after $check steps: $agreement"
 beads=$(echo "$agreement" | awk '{print $2}' | tr -d ,)
 

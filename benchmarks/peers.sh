@@ -30,8 +30,7 @@ source "$here/../tools/drum_common.sh"
 [ -f "$state.restart" ] || { echo "peers: $state.restart missing (run benchmarks/reductions.sh first)" >&2; exit 2; }
 mkdir -p "$out" post/peers
 # the restart and the last snapshot hold the same state (drum.in dumps at its end)
-last=$(ls "${state}"_*.vtp | sed 's/.*_\([0-9]*\)\.vtp/\1 &/' | sort -n | tail -1 | cut -d' ' -f2)
-pvpython "$here/yade/vtp_to_csv.py" "$last" post/peers/beads.csv > /dev/null
+pvpython "$here/yade/vtp_to_csv.py" "$(last_snapshot "$state")" post/peers/beads.csv > /dev/null
 beads=$(($(wc -l < post/peers/beads.csv) - 1))
 dt=$drum_dt
 time=$(awk -v n="$steps" -v dt="$dt" 'BEGIN {printf "%.10g", n * dt}')

@@ -36,8 +36,7 @@ if [ "$long" = yes ]; then
   for p in ${periods//,/ }; do
     name=reduce/drum_L$(mm_of "$p")
     echo "reductions: $(mm_of "$p") mm period, ${time} s from the grid ..."
-    "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var period "$p" -var rpm 21 -var time "$time" \
-      -var name "$name" > "post/$name.log" 2>&1 || { tail -5 "post/$name.log" >&2; exit 1; }
+    drum_run "post/$name.log" -var period "$p" -var rpm 21 -var time "$time" -var name "$name"
     # time averages after --skip (drum_metrics: from the steady-state start, or the last half)
     "$metrics" series --prefix "post/$name" --dt "$drum_dt" --rpm 21 --skip "$skip" > "post/$name.metrics.txt"
   done
@@ -50,10 +49,9 @@ for i in $(seq 1 "$rounds"); do
     mm=$(mm_of "$p")
     echo "reductions: timing round $i, $mm mm ..."
     log=post/reduce/time_L$mm.log
-    "${mpirun[@]}" "$liggghts" -in inputs/drum.in -var period "$p" -var rpm 21 -var time "$span" -var dumpdt 1 \
-      -var start restart -var restart "post/reduce/drum_L$mm.restart" -var name "reduce/time_L$mm" > "$log" 2>&1 \
-      || { tail -5 "$log" >&2; exit 1; }
-    echo "$p $(awk '/^Loop time of/ {t = $4} END {print t}' "$log")" >> post/reduce/timings.txt
+    drum_run "$log" -var period "$p" -var rpm 21 -var time "$span" -var dumpdt 1 \
+      -var start restart -var restart "post/reduce/drum_L$mm.restart" -var name "reduce/time_L$mm"
+    echo "$p $(loop_time "$log")" >> post/reduce/timings.txt
   done
 done
 

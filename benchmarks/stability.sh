@@ -25,7 +25,6 @@ while [ $# -gt 0 ]; do
 done
 source "$(dirname "$0")/../tools/drum_common.sh"
 collide=${COLLIDE:-collide}
-stock_equivalent=${STOCK_EQUIVALENT:-stock_equivalent}
 mkdir -p "$out" post/stability
 
 echo "en,dt_over_tc,restitution_mean,restitution_max,duration_steps,stability_limit_dt_over_tc" > "$out/stability_binary.csv"
@@ -37,8 +36,7 @@ for en in ${ens//,/ }; do
   echo "stability: settling the column, en $en ..."
   "$liggghts" -in inputs/column.in -var en "$en" -var time 0.25 -var name "stability/$tag" \
     > "post/stability/$tag.log" 2>&1 || { tail -5 "post/stability/$tag.log" >&2; exit 1; }
-  m=$en,$en,$en,$en
-  "$stock_equivalent" --tc 1e-4,1e-4,1e-4,1e-4 --en "$m" --et "$m" --mass "$bead_mass,0" > "post/stability/stock_$en.in"
+  stock_for "$en" > "post/stability/stock_$en.in"
   for f in ${fractions//,/ }; do
     dt=$(awk -v f="$f" 'BEGIN {printf "%.6g", f * 1e-4}')
     for model in hooke viscoelastic; do

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Stability map, third scene: the drum (the settled 6 mm slab at 21 rpm)
 # continued for --time at each dt/tc. Stock hooke/stiffness fed our constants
-# (no guard) for en = 0.3, 0.9 (every pair) and Table 3.1 (beads 0.56, drum
-# 0.46); `model viscoelastic` with Table 3.1 (what does the guard say?).
+# (no guard) for en = et = 0.3, 0.9 (every pair) and Table 3.1 (en: beads
+# 0.56, drum 0.46; et 0.46); `model viscoelastic` with Table 3.1 (what does the guard say?).
 # Failure: the run stops (beads leave the box through the drum wall:
 # thermo_modify lost error), beads are missing at the end, or the kinetic
 # energy ends above twice that of the same en at dt = tc/10 (energy growth:
@@ -30,17 +30,13 @@ while [ $# -gt 0 ]; do
 done
 [ -f "$restart" ] || { echo "stability_drum: --restart FILE (a settled 6 mm drum) is needed" >&2; exit 2; }
 source "$(dirname "$0")/../tools/drum_common.sh"
-stock_equivalent=${STOCK_EQUIVALENT:-stock_equivalent}
 mpirun_for "$np"
 mkdir -p "$out" post/stability_drum
 
-# type pairs (1,1) (1,2) (2,1) (2,2): beads 1, drum 2
-pairs() { case "$1" in table) echo 0.56,0.46,0.46,0.46 ;; *) echo "$1,$1,$1,$1" ;; esac; }
 [ "$append" = yes ] || echo "en,dt_over_tc,model,status,beads_kept,beads,ke_final_J,guard" > "$out/stability_drum.csv"
 for spec in ${runs//,/ }; do
   en=${spec%%:*}; model=${spec##*:}
-  "$stock_equivalent" --tc 1e-4,1e-4,1e-4,1e-4 --en "$(pairs "$en")" --et "$(pairs "$en")" --mass "$bead_mass,0" \
-    > "post/stability_drum/stock_$en.in"
+  stock_for "$en" > "post/stability_drum/stock_$en.in"
   ref=""
   for f in ${fractions//,/ }; do
     dt=$(awk -v f="$f" 'BEGIN {printf "%.6g", f * 1e-4}')

@@ -8,7 +8,7 @@ state=$1 time=$2 beads=$3 cores=$4 round=$5
 source "$(dirname "$0")/../../tools/drum_common.sh"
 mpirun_for "$cores"
 tag=liggghts_np${cores}_r$round
-"${mpirun[@]}" "$liggghts" -in inputs/drum.in -var start restart -var restart "$state.restart" \
+drum_run "post/peers/$tag.log" -var start restart -var restart "$state.restart" \
   -var period 0.012 -var rpm 21 -var wall moving -var conventions yade -var time "$time" \
-  -var dumpdt 1 -var name "peers/$tag" > "post/peers/$tag.log" 2>&1 || { tail -5 "post/peers/$tag.log" >&2; exit 1; }
+  -var dumpdt 1 -var name "peers/$tag"
 awk -v n="$beads" '/^Loop time of/ {printf "%.6g\n", n * $9 / $4}' "post/peers/$tag.log" >> "post/peers/liggghts_np$cores.txt"
