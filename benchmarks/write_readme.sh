@@ -281,6 +281,8 @@ PY
     echo
     echo "| en | binary limit (Jury) dt/tc | binary: mean restitution > 1 from dt/tc | column (stock) fails from dt/tc | drum (stock) fails from dt/tc | guard: ERROR above dt/tc (half the limit) | guard ERROR in the column runs from dt/tc | guard stops before failure |"
     echo "|---|---|---|---|---|---|---|---|"
+    # half Jury's binary limit dt/tc for EN (README, timestep section)
+    half() { awk -v e="$1" 'BEGIN {p = atan2(0, -1); l = log(e); printf "%.4g", (sqrt(p * p + 2 * l * l) + l) / (p * p + l * l)}'; }
     for en in $(cut -d, -f1 $r/stability_column.csv | tail -n +2 | sort -u); do
       lim=$(awk -F, -v e="$en" '$1 == e {print $6; exit}' $r/stability_binary.csv)
       egrow=$(awk -F, -v e="$en" '$1 == e && $3 > 1 {print $2; exit}' $r/stability_binary.csv)
@@ -291,8 +293,7 @@ PY
       dfail=""
       [ -f $r/stability_drum.csv ] && dfail=$(awk -F, -v e="$de" '$1 == e && $3 == "hooke" && $4 != "ok" && (m == "" || $2 < m) {m = $2} END {print m}' $r/stability_drum.csv)
       # Table 3.1's drum pairs (en 0.46) set the drum's threshold for the 0.56 row
-      # half Jury's limit (README, timestep section); the drum's 0.56 row: its bead-drum pairs (en 0.46)
-      half() { awk -v e="$1" 'BEGIN {p = atan2(0, -1); l = log(e); printf "%.4g", (sqrt(p * p + 2 * l * l) + l) / (p * p + l * l)}'; }
+      # the drum's 0.56 row: its bead-drum pairs (en 0.46)
       hc=$(half "$en"); hd=$hc; [ "$en" = 0.56 ] && hd=$(half 0.46)
       before=$(awk -v g="$hc" -v h="$hd" -v f="${cfail:-9}" -v b="${egrow:-9}" -v d="${dfail:-9}" 'BEGIN {print (g < f && g < b && h < d) ? "yes" : "NO"}')
       echo "| $en | $lim | ${egrow:-none} | ${cfail:-none} | ${dfail:-none} | $hc$([ "$hd" != "$hc" ] && echo "; drum $hd (bead-drum en 0.46)") | ${ge:-none} | $before |"
