@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "drum_metrics.h"
+#include "metrics.h"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <regex>
 #include <sstream>
 
-#include "drum_metrics.h"
+#include "metrics.h"
 #include "gnuplot.h"
 
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "drum_metrics.h"
+#include "metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -18,7 +18,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include "drum_metrics.h"
+#include "metrics.h"
 
 namespace fs = std::filesystem;
 
@@ -149,7 +149,7 @@ TEST_F(SmallDrum, ParaViewRendersANonBlankPicture)
     Result r;
     for (int attempt = 0; attempt < 3; ++attempt) {
         r = shell("xvfb-run -a pvbatch " + std::string(SOURCE_DIR) +
-                      "/tools/render_drum.py post/small --out small.png --size 300",
+                      "/tools/drum/render.py post/small --out small.png --size 300",
                   dir);
         if (r.status == 0 || r.output.find("bad X server connection") == std::string::npos) break;
     }
