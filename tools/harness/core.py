@@ -1,0 +1,131 @@
+"""Options, the scene's constants, and launching LIGGGHTS and the project's tools."""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+
+# Binaries: an environment variable overrides (e.g. DRUM_METRICS=build/tools/drum/drum_metrics);
+# otherwise PATH (setup.sh installs them to /usr/local/bin).
+_ENV = {"liggghts": "LIGGGHTS", "drum_metrics": "DRUM_METRICS", "collide": "COLLIDE",
+        "contact_law": "CONTACT_LAW", "drum_mesh": "DRUM_MESH"}
+
+
+class RunFailed(RuntimeError):
+    """A LIGGGHTS run or a tool that exited non-zero; the message ends with its output's tail."""
+
+
+def post(*parts):
+    """A path under post/ (the scratch area of runs, not committed), its parent created."""
+    p = REPO.joinpath("post", *map(str, parts))
+    p.parent.mkdir(parents=True, exist_ok=True)
+    return p
+
+
+def tool_path(name):
+    path = os.environ.get(_ENV.get(name, name.upper()), "") or shutil.which(name)
+    if not path:
+        raise RunFailed(f"{name} not found: run `bash setup.sh` (installs it) or set {_ENV.get(name, name.upper())}")
+    return path
+
+
+def tool(name, *args, check=True):
+    """Runs a project binary from the repository root; returns its standard output."""
+    r = subprocess.run([tool_path(name), *map(str, args)], cwd=REPO, capture_output=True, text=True)
+    if check and r.returncode != 0:
+        raise RunFailed(f"{name} {' '.join(map(str, args))} failed:\n{_tail(r.stdout + r.stderr)}")
+    return r.stdout
+
+
+def mpirun(np):
+    """The launcher prefix for `np` ranks: Open MPI refuses root without a flag, and
+    more ranks than cores need --oversubscribe. One rank runs without mpirun."""
+    if np <= 1:
+        return []
+    cmd = ["mpirun", "-np", str(np)]
+    if os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    if np > (os.cpu_count() or 1):
+        cmd.append("--oversubscribe")
+    return cmd
+
+
+def liggghts(script, variables=None, log=None, np=1, check=True):
+    """Runs `liggghts -in script -var NAME VALUE ...` from the repository root, output to `log`
+    (default post/<script stem>.log). Returns the Log. Raises RunFailed with the log's tail."""
+    from .logs import Log
+    log = Path(log) if log else post(Path(script).stem + ".log")
+    log.parent.mkdir(parents=True, exist_ok=True)
+    cmd = mpirun(np) + [tool_path("liggghts"), "-in", str(script)]
+    for k, v in (variables or {}).items():
+        cmd += ["-var", k, str(v)]
+    with open(log, "w") as out:
+        r = subprocess.run(cmd, cwd=REPO, stdout=out, stderr=subprocess.STDOUT)
+    if check and r.returncode != 0:
+        raise RunFailed(f"{' '.join(cmd)} failed (log {log}):\n{_tail(log.read_text(errors='replace'))}")
+    return Log(log, returncode=r.returncode)
+
+
+def drum(log, np=2, check=True, **variables):
+    """One inputs/drum.in run; `variables` are its -var overrides (name=..., rpm=..., ...)."""
+    return liggghts("inputs/drum.in", variables, log=log, np=np, check=check)
+
+
+def last_snapshot(prefix):
+    """PREFIX_<step>.vtp with the highest step."""
+    prefix = Path(prefix)
+    files = [(int(m.group(1)), f) for f in prefix.parent.glob(prefix.name + "_*.vtp")
+             if (m := re.fullmatch(re.escape(prefix.name) + r"_(\d+)\.vtp", f.name))]
+    if not files:
+        raise RunFailed(f"no snapshots {prefix}_<step>.vtp")
+    return max(files)[1]
+
+
+def materials(path=None):
+    """inputs/materials.in as {name: value}: its `variable NAME equal VALUE` lines."""
+    path = Path(path) if path else REPO / "inputs" / "materials.in"
+    values = {}
+    for n, line in enumerate(path.read_text().splitlines(), 1):
+        words = line.split("#", 1)[0].split()
+        if not words:
+            continue
+        if len(words) != 4 or words[0] != "variable" or words[2] != "equal":
+            raise ValueError(f"{path}:{n}: expected `variable NAME equal VALUE`, got: {line.strip()}")
+        values[words[1]] = float(words[3])
+    return values
+
+
+def options(doc, **defaults):
+    """argparse from a driver's docstring (first line: description; the rest: epilog), with the
+    common options a driver asks for: np, out, rounds, restart (pass their defaults)."""
+    first, _, rest = (doc or "").strip().partition("\n")
+    p = argparse.ArgumentParser(description=first, epilog=rest, formatter_class=argparse.RawDescriptionHelpFormatter)
+    common = {
+        "np": (int, "MPI ranks"),
+        "out": (Path, "where the results go"),
+        "rounds": (int, "timed rounds, variants interleaved within each round"),
+        "restart": (Path, "a settled drum state (restart file) to start from"),
+    }
+    for name, default in defaults.items():
+        kind, text = common[name]
+        p.add_argument("--" + name, type=kind, default=default, required=default is None,
+                       help=f"{text} (default: {default})" if default is not None else text)
+    return p
+
+
+def say(who, text):
+    """Progress line of a driver, flushed at once (long runs go to nohup logs)."""
+    print(f"{who}: {text}", flush=True)
+
+
+def _tail(text, lines=8):
+    return "\n".join(text.rstrip().splitlines()[-lines:])
+
+
+if __name__ == "__main__":
+    sys.exit("harness is a library: import it from tools/ or benchmarks/ drivers")
