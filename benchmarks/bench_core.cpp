@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "core/viscoelastic.h"
+#include "core/law.h"
 
 namespace {
 

@@ -10,17 +10,19 @@ NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
 
 #include "contact_models.h"
 #include "normal_model_base.h"
+#include "core/law.h"
 #include "type_pair_table.h"
 
-namespace LIGGGHTS {
-namespace ContactModels {
+namespace LIGGGHTS::ContactModels {
 
+// Per contact: the type pair's constants (table, derived once per run) times
+// this contact's meff, as Eq. 3.22-3.25 scale with meff.
 template<>
 class NormalModel<VISCOELASTIC> : public NormalModelBase
 {
 public:
     NormalModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
-        : NormalModelBase(lmp, hsetup, c), limitForce(false), wallMassAsParticle(false), exactRestitution(false), cmb(c)
+        : NormalModelBase(lmp, hsetup, c), cmb(c)
     {}
 
     void registerSettings(Settings& settings)
@@ -30,7 +32,7 @@ public:
         // sphere-wall contact has meff = m/2 there (off: meff = m).
         settings.registerOnOff("wallMassAsParticle", wallMassAsParticle, false);
         // Coefficients for which a binary collision integrated at this
-        // timestep restitutes en, et and lasts tc (core/discrete.h).
+        // timestep restitutes en, et and lasts tc (core/exact.h).
         settings.registerOnOff("exactRestitution", exactRestitution, false);
     }
 
@@ -38,7 +40,7 @@ public:
 
     void connectToProperties(PropertyRegistry& registry)
     {
-        table.load(lmp, registry.max_type(), limitForce, exactRestitution,
+        table.load(lmp, registry, registry.max_type(), limitForce, exactRestitution,
                    cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic");
     }
 
@@ -57,10 +59,11 @@ public:
         sidata.kt = c.kt;
         sidata.gammat = c.ct;  // absolute damping, as `history` expects it
 
+        const double* const normal = sidata.en;  // LIGGGHTS' name for the contact normal, j to i
         const double F = sidata.is_wall ? Fn * sidata.area_ratio : Fn;
         for (int d = 0; d < 3; ++d) {
-            i_forces.delta_F[d] += F * sidata.en[d];
-            if (!sidata.is_wall) j_forces.delta_F[d] -= F * sidata.en[d];
+            i_forces.delta_F[d] += F * normal[d];
+            if (!sidata.is_wall) j_forces.delta_F[d] -= F * normal[d];
         }
     }
 
@@ -73,15 +76,14 @@ public:
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
-    bool limitForce;
-    bool wallMassAsParticle;
-    bool exactRestitution;
+    bool limitForce = false;
+    bool wallMassAsParticle = false;
+    bool exactRestitution = false;
     ContactModelBase* cmb;
     viscoelastic::TypePairTable table;
 };
 
-}  // namespace ContactModels
-}  // namespace LIGGGHTS
+}  // namespace LIGGGHTS::ContactModels
 
 #endif  // NORMAL_MODEL_VISCOELASTIC_H_
 #endif

@@ -24,18 +24,6 @@ namespace {
 using namespace LIGGGHTS;
 using namespace LIGGGHTS::ContactModels;
 
-struct Combination {
-    int tangential;
-    const char* tangentialName;
-};
-
-// `model viscoelastic` with cohesion off, rolling_friction off, surface default.
-const Combination kSupported[] = {
-    {TANGENTIAL_HISTORY, "history"},
-    {TANGENTIAL_POURNIN, "pournin"},
-    {TANGENTIAL_NO_HISTORY, "no_history"},
-};
-
 template<int T>
 using Style = GranStyle<VISCOELASTIC, T, COHESION_OFF, ROLLING_OFF, SURFACE_DEFAULT>;
 
@@ -49,6 +37,37 @@ template<int T>
 Walls::IGranularWall* createWall(LAMMPS_NS::LAMMPS* lmp, LAMMPS_NS::FixWallGran* parent, int64_t hash)
 {
     return new Walls::Granular<ContactModel<Style<T> > >(lmp, parent, hash);
+}
+
+// One supported combination: `model viscoelastic tangential <name>`.
+struct Combination {
+    const char* tangentialName;
+    int64_t hash;
+    PairStyles::IGranularPairStyle* (*pair)(LAMMPS_NS::LAMMPS*, LAMMPS_NS::PairGran*, int64_t);
+    Walls::IGranularWall* (*wall)(LAMMPS_NS::LAMMPS*, LAMMPS_NS::FixWallGran*, int64_t);
+};
+
+template<int T>
+constexpr Combination combination(const char* tangentialName)
+{
+    return {tangentialName, Style<T>::HASHCODE, &createPair<T>, &createWall<T>};
+}
+
+// What this build supports: `model viscoelastic` with one of these
+// tangential models (cohesion off, rolling_friction off, surface default).
+// The factories, the check and the ERROR listing them all come from here:
+// adding a combination is one line.
+constexpr Combination kSupported[] = {
+    combination<TANGENTIAL_HISTORY>("history"),
+    combination<TANGENTIAL_POURNIN>("pournin"),
+    combination<TANGENTIAL_NO_HISTORY>("no_history"),
+};
+
+bool isSupported(int64_t hash)
+{
+    for (const Combination& c : kSupported)
+        if (hash == c.hash) return true;
+    return false;
 }
 
 std::string supportedList()
@@ -70,14 +89,6 @@ Interface* rejectCombination(LAMMPS_NS::LAMMPS* lmp, Parent*, int64_t)
     const std::string msg = "Unsupported granular model combination: " + supportedList();
     lmp->error->all(FLERR, msg.c_str());
     return NULL;
-}
-
-bool isSupported(int64_t hash)
-{
-    for (const Combination& c : kSupported)
-        if (hash == Utils::generate_gran_hashcode(VISCOELASTIC, c.tangential, COHESION_OFF, ROLLING_OFF, SURFACE_DEFAULT))
-            return true;
-    return false;
 }
 
 std::vector<int> ids(const char* kind)
@@ -120,10 +131,12 @@ struct Registrar {
 
         PairStyles::Factory& pairs = PairStyles::Factory::instance();
         Walls::Factory& walls = Walls::Factory::instance();
-        add<TANGENTIAL_HISTORY>(pairs, walls);
-        add<TANGENTIAL_POURNIN>(pairs, walls);
-        add<TANGENTIAL_NO_HISTORY>(pairs, walls);
+        for (const Combination& c : kSupported) {
+            pairs.addStyle("gran", c.hash, c.pair);
+            walls.addStyle("gran", c.hash, c.wall);
+        }
 
+        // every other combination naming one of our models stops with the list above
         for (int n : ids("normal"))
             for (int t : ids("tangential")) {
                 if (n != VISCOELASTIC && t != TANGENTIAL_POURNIN) continue;
@@ -138,14 +151,6 @@ struct Registrar {
                                            &rejectCombination<LAMMPS_NS::FixWallGran, Walls::IGranularWall>);
                         }
             }
-    }
-
-    template<int T>
-    static void add(PairStyles::Factory& pairs, Walls::Factory& walls)
-    {
-        const int64_t hash = Style<T>::HASHCODE;
-        pairs.addStyle("gran", hash, &createPair<T>);
-        walls.addStyle("gran", hash, &createWall<T>);
     }
 };
 

@@ -13,17 +13,17 @@ TANGENTIAL_MODEL(TANGENTIAL_POURNIN,pournin,20)
 #include "contact_models.h"
 #include "tangential_model_base.h"
 #include "update.h"
-#include "core/viscoelastic.h"
+#include "core/law.h"
 
-namespace LIGGGHTS {
-namespace ContactModels {
+namespace LIGGGHTS::ContactModels {
 
+// Per contact: kt and ct from `model viscoelastic` (sidata), mu from the registry.
 template<>
 class TangentialModel<TANGENTIAL_POURNIN> : public TangentialModelBase
 {
 public:
     TangentialModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
-        : TangentialModelBase(lmp, hsetup, c), coeffFrict(NULL)
+        : TangentialModelBase(lmp, hsetup, c)
     {
         // xi and the normal it is expressed in; both flip sign seen from j.
         history_offset = hsetup->add_history_value("pournin_xi_x", "1");
@@ -39,6 +39,7 @@ public:
 
     void connectToProperties(PropertyRegistry& registry)
     {
+        // coefficientFriction as the registry read it once (model viscoelastic checked it)
         registry.registerProperty("coeffFrict", &MODEL_PARAMS::createCoeffFrict);
         registry.connect("coeffFrict", coeffFrict, "tangential_model pournin");
     }
@@ -52,12 +53,12 @@ public:
         viscoelastic::TangentialState state;
         state.xi = Vec3(h[0], h[1], h[2]);
         state.normal = Vec3(h[3], h[4], h[5]);
-        const Vec3 n(sidata.en[0], sidata.en[1], sidata.en[2]);
+        const Vec3 normal(sidata.en[0], sidata.en[1], sidata.en[2]);  // LIGGGHTS calls the contact normal `en`
         const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
         const double limit = viscoelastic::frictionLimit(coeffFrict[sidata.itype][sidata.jtype], sidata.Fn);
         const bool advance = sidata.computeflag && sidata.shearupdate;
 
-        const Vec3 Ft = viscoelastic::pourninTangentialForce(state, n, vt, sidata.kt, sidata.gammat,
+        const Vec3 Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat,
                                                              limit, update->dt, advance);
         if (advance)
             for (int d = 0; d < 3; ++d) {
@@ -66,7 +67,7 @@ public:
             }
 
         // Torque about each centre from the force at the contact point.
-        const Vec3 nxF = n.cross(Ft);
+        const Vec3 nxF = normal.cross(Ft);
         const double scale = sidata.is_wall ? sidata.area_ratio : 1.0;
         for (int d = 0; d < 3; ++d) {
             i_forces.delta_F[d] += scale * Ft[d];
@@ -90,12 +91,11 @@ public:
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
-    double** coeffFrict;
+    double** coeffFrict = nullptr;
     int history_offset;
 };
 
-}  // namespace ContactModels
-}  // namespace LIGGGHTS
+}  // namespace LIGGGHTS::ContactModels
 
 #endif  // TANGENTIAL_MODEL_POURNIN_H_
 #endif

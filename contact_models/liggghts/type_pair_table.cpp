@@ -1,25 +1,33 @@
+// TypePairTable::load in three steps: read and validate the material data,
+// derive the coefficients per type pair (with the timestep guard), report
+// them.
 #include "type_pair_table.h"
 
-#include "core/discrete.h"
-
+#include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
-#include <map>
-#include <set>
-#include <string>
-#include <tuple>
+#include <optional>
 
 #include "comm.h"
+#include "core/discrete.h"
+#include "core/exact.h"
+#include "core/restitution.h"
+#include "core/stability.h"
 #include "error.h"
 #include "fix_property_global.h"
+#include "global_properties.h"
 #include "lammps.h"
+#include "messages.h"
 #include "modify.h"
+#include "property_registry.h"
 #include "update.h"
 
 namespace viscoelastic {
 
 namespace {
+
+// ---------------------------------------------------------------------------
+// Read and validate
 
 struct PropertySpec {
     const char* name;
@@ -34,151 +42,217 @@ const PropertySpec kRestitutionTangential{"coefficientRestitutionTangential", "i
                                           [](double v) { return v > 0.0 && v <= 1.0; }};
 const PropertySpec kFriction{"coefficientFriction", ">= 0", [](double v) { return v >= 0.0; }};
 
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...)
+void check(LAMMPS_NS::LAMMPS* lmp, const PropertySpec& spec, int i, int j, double v, const char* caller)
 {
-    char buf[1024];
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(buf, sizeof buf, fmt, args);
-    va_end(args);
-    return buf;
+    if (!std::isfinite(v) || !spec.valid(v))
+        lmp->error->all(FLERR, format("%s: %s of type pair (%d,%d) is %g; it must be %s", caller, spec.name, i, j,
+                                      v, spec.range)
+                                   .c_str());
 }
 
-// Fills values[i*stride+j] for 1 <= i,j <= maxType from a peratomtypepair
-// property, after checking every entry the property defines (also for types
-// not in use yet). A missing property, a too small or an asymmetric matrix
-// are reported by LIGGGHTS itself, naming the property.
-void readProperty(LAMMPS_NS::LAMMPS* lmp, const PropertySpec& spec, int maxType, const char* caller,
-                  std::vector<double>& values)
+// A peratomtypepair property as values[i*stride+j], 1 <= i,j <= maxType,
+// after checking every entry it defines (also for types not in use yet). A
+// missing property, a too small or an asymmetric matrix are reported by
+// LIGGGHTS itself, naming the property.
+std::vector<double> readProperty(LAMMPS_NS::LAMMPS* lmp, const PropertySpec& spec, int maxType, const char* caller)
 {
     auto* fix = static_cast<LAMMPS_NS::FixPropertyGlobal*>(lmp->modify->find_fix_property(
         spec.name, "property/global", "peratomtypepair", maxType, maxType, caller));
     const int defined = fix->size_array_rows;
     for (int i = 1; i <= defined; ++i)
-        for (int j = 1; j <= defined; ++j) {
-            const double v = fix->compute_array(i - 1, j - 1);
-            if (!std::isfinite(v) || !spec.valid(v))
-                lmp->error->all(FLERR, format("%s: %s of type pair (%d,%d) is %g; it must be %s",
-                                              caller, spec.name, i, j, v, spec.range)
-                                           .c_str());
-        }
+        for (int j = 1; j <= defined; ++j) check(lmp, spec, i, j, fix->compute_array(i - 1, j - 1), caller);
     const int stride = maxType + 1;
-    values.assign(stride * stride, 0.0);
+    std::vector<double> values(stride * stride, 0.0);
     for (int i = 1; i <= maxType; ++i)
         for (int j = 1; j <= maxType; ++j) values[i * stride + j] = fix->compute_array(i - 1, j - 1);
+    return values;
 }
+
+// The material data of each type pair, as parameters[i*stride+j].
+std::vector<ContactParameters> readParameters(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType,
+                                              const char* caller)
+{
+    const std::vector<double> tc = readProperty(lmp, kDuration, maxType, caller);
+    const std::vector<double> en = readProperty(lmp, kRestitution, maxType, caller);
+    const std::vector<double> et = readProperty(lmp, kRestitutionTangential, maxType, caller);
+    // Friction is the registry's matrix, the one the tangential models
+    // (history, pournin) connect to: read once, checked here.
+    registry.registerProperty("coeffFrict", &MODEL_PARAMS::createCoeffFrict);
+    double** mu = registry.getMatrixProperty("coeffFrict", caller)->data;
+    const int stride = maxType + 1;
+    std::vector<ContactParameters> p(stride * stride, ContactParameters{});
+    for (int i = 1; i <= maxType; ++i)
+        for (int j = 1; j <= maxType; ++j) {
+            check(lmp, kFriction, i, j, mu[i][j], caller);
+            const int k = i * stride + j;
+            p[k] = {tc[k], en[k], et[k], mu[i][j]};
+        }
+    return p;
+}
+
+// ---------------------------------------------------------------------------
+// Derive
 
 // Above this predicted relative restitution error the run is warned.
 constexpr double kAccuracyWarning = 0.01;
-// A bead with many simultaneous contacts oscillates faster than a binary
-// contact: a settled column fails from 0.72-0.77 of the binary limit
-// (benchmarks/README.md, stability map). Runs stop above half of it.
-constexpr double kMultiContactFactor = 0.5;
 
-// `exactRestitution on` solves for the coefficients once per type pair and
-// timestep; the pair style and every wall ask for the same ones at every run.
-const ExactSolution& exactSolution(const ContactParameters& p, double dt, bool limitForce)
+struct Derived {
+    UnitCoefficients unit{};
+    double stableTimestep = 0;           // kMultiContactFactor x binary limit of `unit`
+    DiscreteCollision nominal;           // Pournin's coefficients at this dt, phase-averaged
+    double continuous = 0;               // restitution of the continuous law
+    std::optional<ExactSolution> exact;  // exactRestitution on
+};
+
+// The exact solve takes 1-60 ms per type pair (tc/10 to tc/200): the pair
+// style and each wall solve for themselves rather than share a cache.
+Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exact)
 {
-    static std::map<std::tuple<double, double, double, double, bool>, ExactSolution> cache;
-    const auto key = std::make_tuple(p.tc, p.en, p.et, dt, limitForce);
-    auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, exactUnitCoefficients(p, dt, limitForce)).first;
-    return it->second;
+    Derived d;
+    d.nominal = phaseAveragedCollision(p, dt, limitForce);
+    d.continuous = continuousRestitution(p.tc, p.en, limitForce);
+    if (!exact) {
+        d.unit = pourninUnitCoefficients(p);
+        d.stableTimestep = kMultiContactFactor * criticalTimestep(p);
+        return d;
+    }
+    d.exact = exactUnitCoefficients(p, dt, limitForce);
+    d.unit = d.exact->unit;
+    d.stableTimestep = kMultiContactFactor * criticalTimestep(d.unit);  // the corrected oscillators
+    return d;
+}
+
+void guardTimestep(LAMMPS_NS::LAMMPS* lmp, const ContactParameters& p, int i, int j, double dt, const char* caller)
+{
+    const double dtCrit = criticalTimestep(p);
+    if (dt > kMultiContactFactor * dtCrit)
+        lmp->error->all(FLERR, format("%s: timestep %g s exceeds the stable timestep %g s of type pair (%d,%d) "
+                                      "(tc %g s, en %g, et %g): half the binary stability limit %g s, as beads with "
+                                      "many simultaneous contacts become unstable above it; use timestep < %g",
+                                      caller, dt, kMultiContactFactor * dtCrit, i, j, p.tc, p.en, p.et, dtCrit,
+                                      kMultiContactFactor * dtCrit)
+                                   .c_str());
+}
+
+void checkExact(LAMMPS_NS::LAMMPS* lmp, const Derived& d, int i, int j, double dt, const char* caller)
+{
+    if (!d.exact) return;
+    if (!d.exact->ok())
+        lmp->error->all(FLERR, format("%s: exactRestitution: type pair (%d,%d): %s", caller, i, j,
+                                      failureText(*d.exact).c_str())
+                                   .c_str());
+    if (dt > d.stableTimestep)
+        lmp->error->all(FLERR, format("%s: exactRestitution: timestep %g s exceeds the stable timestep %g s "
+                                      "(half the binary limit) of the corrected coefficients of type pair (%d,%d)",
+                                      caller, dt, d.stableTimestep, i, j)
+                                   .c_str());
+}
+
+// ---------------------------------------------------------------------------
+// Report
+
+std::string reportHeader(bool limitForce, bool exact)
+{
+    return format("viscoelastic: %s per type pair (limitForce %s), outcomes averaged over the contact-start phase:\n",
+                  exact ? "coefficients for the exact restitution at this timestep (exactRestitution on)"
+                        : "Pournin coefficients",
+                  limitForce ? "on" : "off");
+}
+
+std::string reportLine(const ContactParameters& p, const Derived& d, int i, int j, double dt)
+{
+    const UnitCoefficients& u = d.unit;
+    const std::string coefficients =
+        format("  (%d,%d): tc/dt %.1f, timestep limit %.4g s, kn/meff %.6g 1/s^2, cn/meff %.6g 1/s, "
+               "kt/meff %.6g 1/s^2, ct/meff %.6g 1/s",
+               i, j, p.tc / dt, d.stableTimestep, u.kn, u.cn, u.kt, u.ct);
+    if (!d.exact)
+        return coefficients + format(", restitution %.4f continuous, %.4f at this dt (%+.2f%%), duration %.4g s\n",
+                                     d.continuous, d.nominal.restitution,
+                                     100.0 * (d.nominal.restitution / d.continuous - 1.0), d.nominal.duration);
+    const ExactSolution& x = *d.exact;
+    return coefficients + format(" (Pournin's for tc %.6g s, en %.6f); restitution %.6f, tangential %.6f, "
+                                 "duration %.6g s at this dt (nominal coefficients: %.4f, %.4f, %.4g s)\n",
+                                 x.tcNormal, x.enNormal, x.achieved.restitution, x.achieved.tangentialRestitution,
+                                 x.achieved.duration, d.nominal.restitution, d.nominal.tangentialRestitution,
+                                 d.nominal.duration);
+}
+
+std::optional<std::string> warningOf(const ContactParameters& p, const Derived& d, int i, int j, double dt)
+{
+    if (d.exact) {
+        const std::string w = warningText(*d.exact);
+        if (w.empty()) return std::nullopt;
+        return format("viscoelastic: type pair (%d,%d): %s", i, j, w.c_str());
+    }
+    const double err = d.nominal.restitution / d.continuous - 1.0;
+    if (std::fabs(err) <= kAccuracyWarning) return std::nullopt;
+    return format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) restitutes %.4f instead of %.4f "
+                  "(%+.2f%%); a smaller timestep or exactRestitution on reduces this",
+                  dt, p.tc / dt, i, j, d.nominal.restitution, d.continuous, 100.0 * err);
 }
 
 }  // namespace
 
-void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, bool exact, const char* caller)
-{
-    std::vector<double> tc, en, et, mu;
-    readProperty(lmp, kDuration, maxType, caller, tc);
-    readProperty(lmp, kRestitution, maxType, caller, en);
-    readProperty(lmp, kRestitutionTangential, maxType, caller, et);
-    readProperty(lmp, kFriction, maxType, caller, mu);
+// ---------------------------------------------------------------------------
 
-    stride_ = maxType + 1;
-    params_.assign(stride_ * stride_, ContactParameters{});
-    unit_.assign(stride_ * stride_, UnitCoefficients{});
+// The pair style and every wall own a table and load it at every run, most
+// with the same settings: the same report would appear several times per
+// run, and again at every run. So each table keeps what it printed at its
+// last load, and a message is printed unless a live table of the same LAMMPS
+// instance (this one included) has printed it. The tables find each other in
+// this list, which each joins in its constructor and leaves in its
+// destructor: nothing said outlives its table, so a new LAMMPS instance (or a
+// redefined pair style with no wall left saying the same) reports afresh.
+std::vector<const TypePairTable*> TypePairTable::live_;
+
+TypePairTable::TypePairTable() { live_.push_back(this); }
+
+TypePairTable::~TypePairTable() { live_.erase(std::find(live_.begin(), live_.end(), this)); }
+
+void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce,
+                         bool exact, const char* caller)
+{
+    const std::vector<ContactParameters> params = readParameters(lmp, registry, maxType, caller);
     const double dt = lmp->update->dt;
-    std::string report;
+    stride_ = maxType + 1;
+    unit_.assign(stride_ * stride_, UnitCoefficients{});
+    std::string report = reportHeader(limitForce, exact);
     std::vector<std::string> warnings;
     for (int i = 1; i <= maxType; ++i)
-        for (int j = 1; j <= maxType; ++j) {
-            const int k = i * stride_ + j;
-            params_[k] = {tc[k], en[k], et[k], mu[k]};
-            if (j < i) {  // symmetric: done as (j,i)
-                unit_[k] = unit_[j * stride_ + i];
-                continue;
-            }
-            const double dtCrit = criticalTimestep(params_[k]);
-            if (dt > kMultiContactFactor * dtCrit)
-                lmp->error->all(
-                    FLERR, format("%s: timestep %g s exceeds the stable timestep %g s of type pair (%d,%d) "
-                                  "(tc %g s, en %g, et %g): half the binary stability limit %g s, as beads with "
-                                  "many simultaneous contacts become unstable above it; use timestep < %g",
-                                  caller, dt, kMultiContactFactor * dtCrit, i, j, tc[k], en[k], et[k], dtCrit,
-                                  kMultiContactFactor * dtCrit)
-                               .c_str());
-            const DiscreteCollision nominal = phaseAveragedCollision(params_[k], dt, limitForce);
-            if (!exact) {
-                unit_[k] = pourninUnitCoefficients(params_[k]);
-                const double eCont = continuousRestitution(tc[k], en[k], limitForce);
-                const double err = nominal.restitution / eCont - 1.0;
-                report += format("  (%d,%d): tc/dt %.1f, timestep limit %.4g s, kn/meff %.6g 1/s^2, "
-                                 "cn/meff %.6g 1/s, kt/meff %.6g 1/s^2, ct/meff %.6g 1/s, "
-                                 "restitution %.4f continuous, %.4f at this dt (%+.2f%%), duration %.4g s\n",
-                                 i, j, tc[k] / dt, kMultiContactFactor * dtCrit, unit_[k].kn, unit_[k].cn, unit_[k].kt, unit_[k].ct,
-                                 eCont, nominal.restitution, 100.0 * err, nominal.duration);
-                if (std::fabs(err) > kAccuracyWarning)
-                    warnings.push_back(format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) "
-                                              "restitutes %.4f instead of %.4f (%+.2f%%); a smaller timestep or "
-                                              "exactRestitution on reduces this",
-                                              dt, tc[k] / dt, i, j, nominal.restitution, eCont, 100.0 * err));
-                continue;
-            }
-            const ExactSolution& x = exactSolution(params_[k], dt, limitForce);
-            if (!x.ok())
-                lmp->error->all(
-                    FLERR, format("%s: exactRestitution: type pair (%d,%d): %s", caller, i, j, x.failure.c_str())
-                               .c_str());
-            unit_[k] = x.unit;
-            // the corrected oscillators must be stable too
-            const double dtCritExact =
-                std::min(criticalTimestepOf(x.unit.kn, x.unit.cn),
-                         criticalTimestepOf(x.unit.kt / kTangentialMassRatio, x.unit.ct / kTangentialMassRatio));
-            if (dt > kMultiContactFactor * dtCritExact)
-                lmp->error->all(FLERR, format("%s: exactRestitution: timestep %g s exceeds the stable timestep %g s "
-                                              "(half the binary limit) of the corrected coefficients of type pair (%d,%d)",
-                                              caller, dt, kMultiContactFactor * dtCritExact, i, j)
-                                           .c_str());
-            report += format("  (%d,%d): tc/dt %.1f, timestep limit %.4g s, kn/meff %.6g 1/s^2, cn/meff %.6g 1/s, "
-                             "kt/meff %.6g 1/s^2, ct/meff %.6g 1/s (Pournin's for tc %.6g s, en %.6f); "
-                             "restitution %.6f, tangential %.6f, duration %.6g s at this dt "
-                             "(nominal coefficients: %.4f, %.4f, %.4g s)\n",
-                             i, j, tc[k] / dt, kMultiContactFactor * dtCritExact, x.unit.kn, x.unit.cn, x.unit.kt, x.unit.ct,
-                             x.tcNormal, x.enNormal, x.achieved.restitution, x.achieved.tangentialRestitution,
-                             x.achieved.duration, nominal.restitution, nominal.tangentialRestitution,
-                             nominal.duration);
-            if (!x.warning.empty())
-                warnings.push_back(format("viscoelastic: type pair (%d,%d): %s", i, j, x.warning.c_str()));
+        for (int j = i; j <= maxType; ++j) {  // symmetric: (j,i) is (i,j)
+            const ContactParameters& p = params[i * stride_ + j];
+            guardTimestep(lmp, p, i, j, dt, caller);
+            const Derived d = derive(p, dt, limitForce, exact);
+            checkExact(lmp, d, i, j, dt, caller);
+            unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;
+            report += reportLine(p, d, i, j, dt);
+            if (const auto w = warningOf(p, d, i, j, dt)) warnings.push_back(*w);
         }
+    lmp_ = lmp;
+    say(report, warnings);
+}
 
-    // Pair style and every wall load the same table, at every run: say each
-    // thing once.
-    static std::set<std::string> said;
-    const std::string text =
-        format("viscoelastic: %s per type pair (limitForce %s), outcomes averaged over the contact-start phase:\n",
-               exact ? "coefficients for the exact restitution at this timestep (exactRestitution on)"
-                     : "Pournin coefficients",
-               limitForce ? "on" : "off") +
-        report;
-    if (said.insert(text).second && lmp->comm->me == 0) {
-        if (lmp->screen) fputs(text.c_str(), lmp->screen);
-        if (lmp->logfile) fputs(text.c_str(), lmp->logfile);
-    }
+void TypePairTable::say(const std::string& report, const std::vector<std::string>& warnings)
+{
+    auto fresh = [this](const std::string& m) {
+        for (const TypePairTable* t : live_)
+            if (t->lmp_ == lmp_ && std::find(t->said_.begin(), t->said_.end(), m) != t->said_.end()) return false;
+        return true;
+    };
+    const bool newReport = fresh(report);
+    std::vector<std::string> newWarnings;
     for (const std::string& w : warnings)
-        if (said.insert(w).second && lmp->comm->me == 0) lmp->error->warning(FLERR, w.c_str());
+        if (fresh(w)) newWarnings.push_back(w);
+    said_.assign(1, report);
+    said_.insert(said_.end(), warnings.begin(), warnings.end());
+
+    if (lmp_->comm->me != 0) return;
+    if (newReport) {
+        if (lmp_->screen) fputs(report.c_str(), lmp_->screen);
+        if (lmp_->logfile) fputs(report.c_str(), lmp_->logfile);
+    }
+    for (const std::string& w : newWarnings) lmp_->error->warning(FLERR, w.c_str());
 }
 
 }  // namespace viscoelastic

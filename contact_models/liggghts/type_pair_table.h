@@ -1,33 +1,48 @@
-// Per type-pair material data of the viscoelastic law, read from
-// `fix property/global` at init, validated, and turned into the core's
-// unit coefficients once, so a contact only multiplies by its meff.
+// Per type-pair constants of the viscoelastic law, derived at init from the
+// `fix property/global` material data, so a contact only multiplies by its
+// meff. One table per pair style and per wall (owned by its normal model).
 #pragma once
 
+#include <string>
 #include <vector>
 
-#include "core/viscoelastic.h"
+#include "core/pournin.h"
 
 namespace LAMMPS_NS { class LAMMPS; }
+class PropertyRegistry;
 
 namespace viscoelastic {
 
 class TypePairTable {
 public:
+    TypePairTable();
+    ~TypePairTable();
+    TypePairTable(const TypePairTable&) = delete;
+    TypePairTable& operator=(const TypePairTable&) = delete;
+
     // Reads contactDuration, coefficientRestitution,
     // coefficientRestitutionTangential and coefficientFriction for types
-    // 1..maxType, stops with an ERROR naming the property and type pair on a
-    // bad value, and checks the timestep against the stability limit. With
-    // `exact` the coefficients are those for which a binary collision at
-    // this timestep restitutes en, et and lasts tc (core/discrete.h).
-    void load(LAMMPS_NS::LAMMPS* lmp, int maxType, bool limitForce, bool exact, const char* caller);
+    // 1..maxType and stops with an ERROR naming the property and type pair on
+    // a bad value, or when the timestep is above the stable one. With `exact`
+    // the coefficients are those for which a binary collision at this
+    // timestep restitutes en, et and lasts tc (core/exact.h). Then reports
+    // the coefficients in the log.
+    void load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce, bool exact,
+              const char* caller);
 
     const UnitCoefficients& unit(int i, int j) const { return unit_[i * stride_ + j]; }
-    const ContactParameters& params(int i, int j) const { return params_[i * stride_ + j]; }
 
 private:
+    void say(const std::string& report, const std::vector<std::string>& warnings);
+
     int stride_ = 0;
-    std::vector<ContactParameters> params_;
     std::vector<UnitCoefficients> unit_;
+
+    // What this table printed at its last load, so the report appears once
+    // per LAMMPS instance (see say()).
+    LAMMPS_NS::LAMMPS* lmp_ = nullptr;
+    std::vector<std::string> said_;
+    static std::vector<const TypePairTable*> live_;
 };
 
 }  // namespace viscoelastic

@@ -8,9 +8,9 @@
 #include <regex>
 #include <stdexcept>
 
-#include "liggghts_run.h"
+#include "runner.h"
 
-using namespace impact;
+using namespace collide;
 namespace fs = std::filesystem;
 
 namespace {
@@ -57,7 +57,7 @@ double maxVelocityDifference(const Case& c, const Trajectory& a, const Trajector
     EXPECT_EQ(a.frames.size(), b.frames.size());
     double d = 0.0;
     for (size_t i = 0; i < std::min(a.frames.size(), b.frames.size()); ++i) {
-        const Snapshot &p = a.frames[i], &q = b.frames[i];
+        const BodyStates &p = a.frames[i], &q = b.frames[i];
         d = std::max({d, (p.v1 - q.v1).norm(), (p.v2 - q.v2).norm(), (p.w1 - q.w1).norm() * c.radius1,
                       (p.w2 - q.w2).norm() * c.radius2});
     }
@@ -88,7 +88,7 @@ TEST_P(HeadOn, MatchesReferenceAtTcOver100)
     Case c = headOn(GetParam().geometry, GetParam().limitForce);
     if (GetParam().unequal) c.radius2 = 2.5e-3, c.density2 = 7800.0, c.radius1 = 1.0e-3;
     const Reference ref = reference(c);
-    const Outcome lig = measure(c, runLiggghts(c, options("headon_" + paramName({GetParam(), 0}))));
+    const Outcome lig = measureTrajectory(c, runLiggghts(c, options("headon_" + paramName({GetParam(), 0}))));
 
     const Envelope env = discretisationEnvelope(c, ref.outcome);
     EXPECT_LE(std::fabs(lig.restitution - ref.outcome.restitution), env.restitution + 1e-5);
@@ -117,7 +117,7 @@ TEST(Integrator, LiggghtsFollowsThePredictedRecurrence)
         for (double ratio : {10.0, 35.0}) {
             Case c = headOn(g, false);
             c.dt = c.params.tc / ratio;
-            const Outcome lig = measure(c, runLiggghts(c, options("recurrence")));
+            const Outcome lig = measureTrajectory(c, runLiggghts(c, options("recurrence")));
             const auto d = viscoelastic::discreteCollisionAtPhase(c.params.tc, c.params.en, c.dt, false, 0.5);
             EXPECT_NEAR(lig.restitution, d.restitution, 1e-9) << name(g) << " tc/dt " << ratio;
             EXPECT_NEAR(lig.duration, d.duration, 1e-3 * c.dt);
@@ -136,7 +136,7 @@ TEST(Oblique, StickingTangentialRestitutionPournin)
         c.params = {1e-4, 0.5, 0.5, 0.5};
         c.tangentialSpeed = 0.3;
         const Reference ref = reference(c);
-        const Outcome lig = measure(c, runLiggghts(c, options("sticking")));
+        const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking")));
         EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, 0.03) << name(g);
         // first-order geometry: lever arm (overlap/R) and, for a pair, the turn
         // of the line of centres during contact (vt tc / (R1 + R2))
@@ -160,7 +160,7 @@ TEST(Oblique, StickingTangentialRestitutionHistory)
         c.tangentialSpeed = 0.3;
         c.dt = c.params.tc / 400.0;
         const Reference ref = reference(c);
-        const Outcome lig = measure(c, runLiggghts(c, options("sticking_history")));
+        const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking_history")));
         EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, 0.03) << name(g);
         EXPECT_LT(ref.outcome.tangentialRestitution, 0.9 * c.params.et) << name(g);
     }
@@ -175,7 +175,7 @@ TEST(Oblique, GrossSlidingFollowsWalton)
         c.tangentialSpeed = 4.0;
         const std::optional<ClosedForm> cf = closedForm(c);
         ASSERT_TRUE(cf && cf->regime == "sliding");
-        const Outcome lig = measure(c, runLiggghts(c, options("sliding")));
+        const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sliding")));
         const double du = (1.0 + lig.tangentialRestitution) * c.tangentialSpeed;
         const double duWalton = (1.0 + cf->outcome.tangentialRestitution) * c.tangentialSpeed;
         EXPECT_NEAR(du / duWalton, 1.0, 0.02) << "limitForce " << limit;
@@ -228,7 +228,7 @@ TEST(Restart, MidContactRestartContinuesTheCollision)
         const double diff = maxVelocityDifference(c, whole, resumed);
         EXPECT_LT(diff, bound) << name(g);
         EXPECT_GT(diff, 0.0);  // the restart really happened mid-contact
-        const Outcome a = measure(c, whole), b = measure(c, resumed);
+        const Outcome a = measureTrajectory(c, whole), b = measureTrajectory(c, resumed);
         EXPECT_NEAR(a.tangentialRestitution, b.tangentialRestitution, bound / c.tangentialSpeed) << name(g);
         EXPECT_NEAR(a.restitution, b.restitution, bound / c.normalSpeed) << name(g);
     }
@@ -354,20 +354,15 @@ TEST(BadInput, UnsupportedCombinationListsSupportedOnes)
 // 0.13 at tc/5, i.e. 0.05 % and 0.09 % of en.
 TEST(ExactRestitution, LiggghtsRestitutesTheRequestAtCoarseSteps)
 {
-    std::vector<double> phases;
-    for (int p = 0; p < 128; ++p) phases.push_back((p + 0.5) / 128);
+    const std::vector<double> phases = evenPhases(128);
     for (Geometry g : {Geometry::Pair, Geometry::Wall, Geometry::MeshWall})
         for (bool limit : {false, true})
             for (double ratio : {10.0, 5.0}) {
                 Case c = headOn(g, limit);
                 c.exactRestitution = true;
                 c.dt = c.params.tc / ratio;
-                double e = 0.0, duration = 0.0;
-                for (const Trajectory& t : runLiggghts(c, options("exact"), phases)) {
-                    const Outcome o = measure(c, t);
-                    e += o.restitution / phases.size();
-                    duration += o.duration / phases.size();
-                }
+                const Outcome mean = meanOutcome(c, runLiggghts(c, options("exact"), phases));
+                const double e = mean.restitution, duration = mean.duration;
                 const double tolerance = ratio == 10.0 ? 1e-3 : 5e-3;
                 EXPECT_LE(std::fabs(e / c.params.en - 1.0), tolerance)
                     << name(g) << " limitForce " << limit << " tc/" << ratio << ": e " << e;

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "impact.h"
+#include "reference.h"
 
-using namespace impact;
+using namespace collide;
 
 namespace {
 
@@ -34,7 +34,7 @@ TEST(Reference, HeadOnPairMatchesClosedFormForAnySizesAndDensities)
         c.radius2 = 2.5e-3;
         c.density2 = 7800.0;
         c.limitForce = limit;
-        const Outcome ode = integrate(c);
+        const Outcome ode = integrateContactOde(c);
         const ClosedForm cf = *closedForm(c);
         EXPECT_NEAR(ode.restitution, cf.outcome.restitution, 1e-5);
         EXPECT_NEAR(ode.duration, cf.outcome.duration, 1e-4 * c.params.tc);
@@ -45,7 +45,7 @@ TEST(Reference, HeadOnPairMatchesClosedFormForAnySizesAndDensities)
 TEST(Reference, LimitForceRestitutionIsSchwagerPoeschel)
 {
     const Case c = wallCase(0.5, 0.5, 0.3, 1.0, 0.0, true);
-    EXPECT_NEAR(integrate(c).restitution, 0.550, 6e-4);
+    EXPECT_NEAR(integrateContactOde(c).restitution, 0.550, 6e-4);
 }
 
 // Oblique closed forms assume the rigid lever arm R; the law acts at
@@ -56,7 +56,7 @@ TEST(Reference, StickingImpactOnWallReversesContactPointVelocityByEt)
     const Case c = wallCase(0.5, 0.5, 0.3, 0.01, 0.002);
     const ClosedForm cf = *closedForm(c);
     ASSERT_EQ(cf.regime, "sticking");
-    const Outcome ode = integrate(c);
+    const Outcome ode = integrateContactOde(c);
     EXPECT_NEAR(ode.tangentialRestitution, 0.5, 5e-4);
     EXPECT_NEAR(ode.spin1, cf.outcome.spin1, 5e-4 * std::fabs(cf.outcome.spin1));
 }
@@ -67,7 +67,7 @@ TEST(Reference, GrossSlidingOnWallFollowsWalton)
         const Case c = wallCase(0.5, 0.5, 0.3, 0.01, 0.04, limit);
         const ClosedForm cf = *closedForm(c);
         ASSERT_EQ(cf.regime, "sliding");
-        const Outcome ode = integrate(c);
+        const Outcome ode = integrateContactOde(c);
         EXPECT_NEAR(ode.tangentialRestitution, cf.outcome.tangentialRestitution, 5e-4);
         EXPECT_NEAR(ode.spin1, cf.outcome.spin1, 5e-4 * std::fabs(cf.outcome.spin1));
         EXPECT_NEAR(ode.reboundAngle, cf.outcome.reboundAngle, 0.05);
@@ -82,7 +82,7 @@ TEST(Reference, FrictionlessObliquePairKeepsSpinAndNormalRestitution)
     c.tangentialSpeed = 0.05;
     c.spin1 = Vec3(0, 0, 300.0);
     c.params.mu = 0.0;
-    const Outcome a = integrate(c);
+    const Outcome a = integrateContactOde(c);
     // The turning normal adds a centrifugal term (vt^2/r)/(kn overlap/meff)
     // ~ 4e-5 to the normal motion; no friction means no torque.
     EXPECT_NEAR(a.restitution, c.params.en, 1e-4);

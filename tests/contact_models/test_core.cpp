@@ -5,6 +5,12 @@
 #include <cmath>
 
 #include "core/discrete.h"
+#include "core/exact.h"
+#include "core/law.h"
+#include "core/pournin.h"
+#include "core/restitution.h"
+#include "core/stability.h"
+#include "messages.h"
 
 using namespace viscoelastic;
 
@@ -29,6 +35,17 @@ TEST(Coefficients, MatchEquations322To325)
     EXPECT_NEAR(c.cn, -2.0 * meff / tc * std::log(en), 1e-12 * c.cn);
     EXPECT_NEAR(c.kt, mt / (tc * tc) * (kPi * kPi + std::log(et) * std::log(et)), 1e-12 * c.kt);
     EXPECT_NEAR(c.ct, -2.0 * mt / tc * std::log(et), 1e-12 * c.ct);
+}
+
+TEST(Coefficients, InverseGivesBackDurationAndRestitution)
+{
+    for (double tc : {1e-4, 3e-6})
+        for (double en : {0.1, 0.46, 0.56, 0.9, 1.0}) {
+            const Oscillator o = pourninOscillator(tc, std::log(en));
+            const DurationAndRestitution back = pourninInverse(o.k, o.c);
+            EXPECT_NEAR(back.tc, tc, 1e-12 * tc);
+            EXPECT_NEAR(back.lnE, std::log(en), 1e-12);
+        }
 }
 
 TEST(Coefficients, TangentialMassIsTwoSeventhsForSpheresAndWalls)
@@ -69,6 +86,15 @@ TEST(Timestep, CriticalStepOfUndampedContactIsTwoTcOverPi)
 {
     EXPECT_NEAR(criticalTimestep(1e-4, 1.0), 2e-4 / kPi, 1e-18);
     EXPECT_LT(criticalTimestep(1e-4, 0.5), 2e-4 / kPi);  // damping with lagged velocity lowers it
+}
+
+TEST(Timestep, ClosedFormAgreesWithTheLimitOfTheCoefficients)
+{
+    for (const ContactParameters& p : {kBeads, kDrum, ContactParameters{2e-4, 0.9, 0.3, 0.5}}) {
+        EXPECT_NEAR(criticalTimestep(pourninUnitCoefficients(p)), criticalTimestep(p), 1e-12 * p.tc);
+        EXPECT_DOUBLE_EQ(criticalTimestep(p), std::min(criticalTimestep(p.tc, p.en), criticalTimestep(p.tc, p.et)));
+    }
+    EXPECT_DOUBLE_EQ(kMultiContactFactor, 0.5);  // the guard README and the ERROR text call "half"
 }
 
 // Brute force: the recurrence of one contact (no separation) grows without
@@ -172,7 +198,7 @@ TEST(Tangential, TurningNormalKeepsOverlapLength)
     EXPECT_EQ(s.normal, n);
 }
 
-// --- core/discrete.h: phase averages and `exactRestitution` ---------------
+// --- core/discrete.h, core/exact.h: phase averages and `exactRestitution` --
 
 // Brute force: the plain mean over many evenly spread phases. Its own error
 // is at most (largest jump of the outcome over the phase) / (2 phases): the
@@ -226,8 +252,8 @@ TEST(ExactRestitution, BinaryCollisionRestitutesTheRequestAtCoarseSteps)
         const ContactParameters p{1e-4, k.en, k.et, 0.5};
         const double dt = p.tc / k.ratio;
         const ExactSolution s = exactUnitCoefficients(p, dt, k.limitForce);
-        ASSERT_TRUE(s.ok()) << s.failure;
-        EXPECT_TRUE(s.warning.empty()) << s.warning;
+        ASSERT_TRUE(s.ok()) << failureText(s);
+        EXPECT_TRUE(warningText(s).empty()) << warningText(s);
         const DiscreteCollision b = bruteForce(s.unit, dt, k.limitForce);
         const std::string what = "en " + std::to_string(k.en) + " tc/" + std::to_string(k.ratio) +
                                  (k.limitForce ? " limitForce" : "");
@@ -267,14 +293,33 @@ TEST(ExactRestitution, UnreachableRequestFailsWithReason)
     // forbidding attraction bounds the restitution from below (0.25 for en -> 0.1, continuous)
     const ExactSolution s = exactUnitCoefficients({1e-4, 0.1, 0.46, 0.5}, 1e-5, true);
     EXPECT_FALSE(s.ok());
-    EXPECT_NE(s.failure.find("limitForce"), std::string::npos) << s.failure;
-    EXPECT_NE(s.failure.find("en 0.1"), std::string::npos) << s.failure;
+    EXPECT_EQ(s.failure, ExactFailure::normalUnreachable);
+    EXPECT_GT(s.closestLnRestitutionError, 0.0);  // the closest restitutes too much
+    const std::string text = failureText(s);
+    EXPECT_NE(text.find("no normal coefficients reach en 0.1 in 0.0001 s at dt 1e-05 s (tc/dt 10.00) with limitForce on"),
+              std::string::npos)
+        << text;
+}
+
+// Near e = 1 the coarse discrete contact restitutes less than requested even
+// undamped: the dashpot goes off, and the words say so.
+TEST(ExactRestitution, NegativeDashpotIsSwitchedOffWithAWarning)
+{
+    const ExactSolution s = exactUnitCoefficients({1e-4, 1.0, 1.0, 0.5}, 1e-4 / 4.3, false);
+    ASSERT_TRUE(s.ok()) << failureText(s);
+    ASSERT_TRUE(s.undampedTangentialRestitution.has_value());
+    EXPECT_LT(*s.undampedTangentialRestitution, 1.0);
+    EXPECT_EQ(s.unit.ct, 0.0);
+    EXPECT_EQ(failureText(s), "");
+    EXPECT_NE(warningText(s).find("et 1 at dt 2.32558e-05 s (tc/dt 4.30) would need a negative tangential dashpot"),
+              std::string::npos)
+        << warningText(s);
 }
 
 TEST(ExactRestitution, ElasticContactNeedsNoDashpot)
 {
     const ExactSolution s = exactUnitCoefficients({1e-4, 1.0, 1.0, 0.5}, 1e-5, false);
-    ASSERT_TRUE(s.ok()) << s.failure;
+    ASSERT_TRUE(s.ok()) << failureText(s);
     EXPECT_EQ(s.unit.cn, 0.0);
     EXPECT_EQ(s.unit.ct, 0.0);
     EXPECT_NEAR(bruteForce(s.unit, 1e-5, false).restitution, 1.0, 1e-5);

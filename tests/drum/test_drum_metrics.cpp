@@ -2,29 +2,48 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <string>
+#include <vector>
+
+#include <vtkDoubleArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include "metrics.h"
 
 namespace {
 
-// Beads on a square grid (spacing d) filling the drum below the plane
-// z = z0 + tan(angle) y, inside radius R - d/2; the ones within d of the
-// shell touch it (unit force along -r, plus `drag` along the drum's motion).
-drum::Snapshot bed(double angleDeg, double z0, double drag = 0.0)
+constexpr double kR = 0.225, kD = 0.003;  // drum radius, bead diameter [m]
+
+// Beads on a square grid (spacing d, centres at (i + 1/2) d in y and z, so a
+// two-diameter surface bin holds exactly two columns, at +-d/2 from its
+// centre) filling the drum below the plane z = z0 + tan(angle) y, inside
+// radius R - d/2, in `layers` identical layers along x (the default 6 mm
+// slab holds two); the ones within d of the shell touch it (unit force
+// along -r, plus `drag` along the drum's motion).
+drum::Bed bed(double angleDeg, double z0, double drag = 0.0, int layers = 1)
 {
-    const double R = 0.225, d = 0.003, slope = std::tan(angleDeg * M_PI / 180.0);
-    drum::Snapshot s;
-    for (double y = -R; y <= R; y += d)
-        for (double z = -R; z <= R; z += d) {
-            const double r = std::hypot(y, z);
-            if (r > R - d / 2 || z > z0 + slope * y) continue;
-            s.position.emplace_back(0.0, y, z);
-            s.radius.push_back(d / 2);
-            Eigen::Vector3d f = Eigen::Vector3d::Zero();
-            if (r > R - 1.5 * d) f = -Eigen::Vector3d(0.0, y, z) / r + drag * Eigen::Vector3d(0.0, -z, y) / r;
-            s.wallForce.push_back(f);
-        }
+    const double slope = std::tan(angleDeg * M_PI / 180.0);
+    const int n = static_cast<int>(kR / kD) + 1;
+    drum::Bed s;
+    for (int layer = 0; layer < layers; ++layer)
+        for (int i = -n; i < n; ++i)
+            for (int j = -n; j < n; ++j) {
+                const double y = (i + 0.5) * kD, z = (j + 0.5) * kD, r = std::hypot(y, z);
+                if (r > kR - kD / 2 || z > z0 + slope * y) continue;
+                s.position.emplace_back(layer * kD, y, z);
+                s.radius.push_back(kD / 2);
+                Eigen::Vector3d f = Eigen::Vector3d::Zero();
+                if (r > kR - 1.5 * kD) f = -Eigen::Vector3d(0.0, y, z) / r + drag * Eigen::Vector3d(0.0, -z, y) / r;
+                s.wallForce.push_back(f);
+            }
     return s;
 }
 
@@ -32,20 +51,24 @@ drum::Snapshot bed(double angleDeg, double z0, double drag = 0.0)
 
 TEST(DrumMetrics, HeightsOfAFlatBed)
 {
-    const drum::Snapshot s = bed(0.0, -0.05);
-    const drum::Metrics m = drum::measure(s, 1.0);
+    const drum::Bed s = bed(0.0, -0.05);
+    const drum::BedMetrics m = drum::measureBed(s, 1.0);
     double maxZ = -1, sumZ = 0, maxWallZ = -1;
     for (size_t i = 0; i < s.position.size(); ++i) {
         maxZ = std::max(maxZ, s.position[i].z());
         sumZ += s.position[i].z();
         if (s.wallForce[i].norm() > 0) maxWallZ = std::max(maxWallZ, s.position[i].z());
     }
-    EXPECT_DOUBLE_EQ(m.head, maxZ);
-    EXPECT_DOUBLE_EQ(m.shoulder, maxWallZ);
-    EXPECT_NEAR(m.centreOfMass, sumZ / s.position.size(), 1e-12);
-    EXPECT_LE(m.shoulder, m.head);
-    EXPECT_LT(m.centreOfMass, 0.0);
-    EXPECT_NEAR(m.reposeAngle, 0.0, 0.5);
+    EXPECT_DOUBLE_EQ(m["Hh"], maxZ);
+    EXPECT_DOUBLE_EQ(m["Hd"], maxWallZ);
+    EXPECT_NEAR(m["Hc"], sumZ / s.position.size(), 1e-12);
+    EXPECT_LE(m["Hd"], m["Hh"]);
+    EXPECT_LT(m["Hc"], 0.0);
+    EXPECT_NEAR(m["angle"], 0.0, 0.5);
+    // no velocities: the flowing layer is undefined, not an error
+    EXPECT_TRUE(std::isnan(m["layer_thickness"]));
+    EXPECT_TRUE(std::isnan(m["surface_velocity"]));
+    EXPECT_THROW(m["head"], std::invalid_argument);
 }
 
 // The surface is sampled in bins two beads wide on a grid of spacing d: the
@@ -53,21 +76,102 @@ TEST(DrumMetrics, HeightsOfAFlatBed)
 TEST(DrumMetrics, AngleOfReposeOfAnInclinedBed)
 {
     for (double angle : {10.0, 25.0, 35.0}) {
-        EXPECT_NEAR(drum::measure(bed(angle, -0.06), 1.0).reposeAngle, angle, 1.0) << angle;
+        EXPECT_NEAR(drum::measureBed(bed(angle, -0.06), 1.0)["angle"], angle, 1.0) << angle;
         // the same bed seen with the drum turning the other way tilts the other way
-        EXPECT_NEAR(drum::measure(bed(angle, -0.06), -1.0).reposeAngle, -angle, 1.0) << angle;
+        EXPECT_NEAR(drum::measureBed(bed(angle, -0.06), -1.0)["angle"], -angle, 1.0) << angle;
     }
 }
 
 TEST(DrumMetrics, TangentialForceIsTheComponentAlongTheDrumMotion)
 {
-    const drum::Metrics m = drum::measure(bed(0.0, -0.05, 0.25), 1.0);
+    const drum::BedMetrics m = drum::measureBed(bed(0.0, -0.05, 0.25), 1.0);
     EXPECT_GT(m.wallContacts, 100);
-    EXPECT_NEAR(m.tangentialForce, 0.25, 1e-12);  // the radial part does not count
-    EXPECT_NEAR(drum::measure(bed(0.0, -0.05, 0.25), -1.0).tangentialForce, -0.25, 1e-12);
+    EXPECT_NEAR(m["drum_force"], 0.25, 1e-12);  // the radial part does not count
+    EXPECT_NEAR(drum::measureBed(bed(0.0, -0.05, 0.25), -1.0)["drum_force"], -0.25, 1e-12);
 }
 
-TEST(SteadyState, DetectsTheEndOfATransientAndRejectsTrends)
+TEST(DrumMetrics, ColumnNamesFollowTheContract)
+{
+    std::vector<std::string> columns, se;
+    for (const drum::Metric& m : drum::metricTable()) columns.push_back(m.column()), se.push_back(m.seColumn());
+    EXPECT_EQ(columns, (std::vector<std::string>{"Hh_m", "Hd_m", "Hc_m", "drum_force_N", "angle_deg", "layer_thickness_m",
+                                                 "surface_velocity_mps"}));
+    EXPECT_EQ(se[0], "Hh_se_m");
+    EXPECT_EQ(se[4], "angle_se_deg");
+    EXPECT_EQ(se[6], "surface_velocity_se_mps");
+}
+
+// The flowing layer on a synthetic bed: the two-layer grid bed() below a
+// plane inclined at theta (rising towards +y, as a counter-clockwise drum
+// carries it), every bead moving downhill along the plane at
+// u(H) = u0 (1 - H / zero), H its depth below the plane (negative below
+// `zero`: the bed beneath moving uphill), plus an axial 0.3 m/s that the
+// streamwise projection must ignore.
+//
+// Tolerances. The metrics measure depth h from the fitted surface line, not
+// from the plane. In each two-diameter bin the line is fitted to the
+// third-highest bead, which with two identical layers is the top of the
+// lower of the bin's two columns (at y_c -+ d/2). A column's top lies within
+// [plane - d, plane] at its own y, so the fitted value at the bin centre y_c
+// is below the plane by between tan(theta) d/2 and tan(theta) d/2 + d
+// (vertically); the least-squares line at mid-chord lies in the same band,
+// up to its slope error (<= 1 deg, see above) times the <= 1 bin between
+// mid-chord and the bins' centroid: 0.04 d, taken as 0.1 d. Perpendicular to
+// the surface the line thus lies eps below the plane, with
+//   eps in [d sin(theta)/2, d (sin(theta)/2 + cos(theta))] (+- 0.1 d),
+// and h = H - eps. Since u is linear in depth, each bin's mean u is u at its
+// beads' mean depth, so interpolating between the mean depths of the two
+// bins that straddle the sign change is exact: thickness = zero - eps. The
+// top bin holds depths h in [-d, d), i.e. H in [max(0, eps - d), eps + d);
+// with the grid's depths spread evenly, their mean depth is (eps + d)/2 for
+// eps <= d, else eps (0.56 d to 1.12 d at 25 deg); the strip, 4 d wide,
+// holds only ~10 grid points of the bin, spread unevenly in depth: allow a
+// quarter bin (d/4) either way. Surface velocity: u0 (1 - that / zero).
+// The nominal u0 (1 - (d/2) / zero) is the case eps = 0, a line through the
+// top bead centres. Measured (theta 15, 25, 35 deg): eps = 0.62-0.66 d, so
+// the thickness reads zero - 2.0 mm (13.0 mm for 15 mm) and the surface
+// velocity 0.40-0.42 m/s for the nominal 0.45: the line of `angle` lies about
+// 2/3 d below the top centres of this grid, and depths are measured from it.
+TEST(DrumMetrics, FlowingLayerOfALinearProfile)
+{
+    const double u0 = 0.5, z0 = -0.06;
+    // mean depth below the plane of the top bin's beads for a line eps below it
+    auto meanTop = [](double eps) { return eps <= kD ? (eps + kD) / 2 : eps; };
+    for (double theta : {15.0, 25.0, 35.0}) {
+        const double s = std::sin(theta * M_PI / 180.0), c = std::cos(theta * M_PI / 180.0);
+        const double epsLow = kD * s / 2 - 0.1 * kD, epsHigh = kD * (s / 2 + c) + 0.1 * kD;
+        const Eigen::Vector3d downhill(0.0, -c, -s);
+        drum::Bed b = bed(theta, z0, 0.0, 2);
+        // the profile's zero at delta = 15 mm, and (negative test) at 30 and 9 mm
+        for (double zero : {0.015, 0.030, 0.009}) {
+            b.velocity.clear();
+            for (const Eigen::Vector3d& p : b.position) {
+                const double H = (z0 + std::tan(theta * M_PI / 180.0) * p.y() - p.z()) * c;
+                b.velocity.push_back(u0 * (1.0 - H / zero) * downhill + Eigen::Vector3d(0.3, 0.0, 0.0));
+            }
+            const drum::BedMetrics m = drum::measureBed(b, 1.0);
+            EXPECT_NEAR(m["angle"], theta, 1.0);
+            EXPECT_GE(m["layer_thickness"], zero - epsHigh) << theta << " " << zero;
+            EXPECT_LE(m["layer_thickness"], zero - epsLow) << theta << " " << zero;
+            EXPECT_GE(m["surface_velocity"], u0 * (1.0 - (meanTop(epsHigh) + kD / 4) / zero)) << theta << " " << zero;
+            EXPECT_LE(m["surface_velocity"], u0 * (1.0 - (meanTop(epsLow) - kD / 4) / zero)) << theta << " " << zero;
+            // the mirror image: the drum turning the other way, the bed rising towards -y
+            drum::Bed mirror = b;
+            for (auto* v : {&mirror.position, &mirror.velocity})
+                for (Eigen::Vector3d& x : *v) x.y() = -x.y();
+            const drum::BedMetrics mm = drum::measureBed(mirror, -1.0);
+            EXPECT_NEAR(mm["layer_thickness"], m["layer_thickness"], 1e-12);
+            EXPECT_NEAR(mm["surface_velocity"], m["surface_velocity"], 1e-12);
+        }
+        // a bed moving uphill as a whole has no flowing layer; the fitted
+        // surface is within 1 deg of the plane: u = -0.1 cos(<= 1 deg)
+        for (Eigen::Vector3d& v : b.velocity) v = -0.1 * downhill;
+        EXPECT_TRUE(std::isnan(drum::measureBed(b, 1.0)["layer_thickness"]));
+        EXPECT_NEAR(drum::measureBed(b, 1.0)["surface_velocity"], -0.1, 0.1 * (1 - std::cos(M_PI / 180)));
+    }
+}
+
+TEST(DrumSteadyState, DetectsTheEndOfATransientAndRejectsTrends)
 {
     std::mt19937 rng(7);
     std::normal_distribution<double> noise(0.0, 0.002);
@@ -85,11 +189,13 @@ TEST(SteadyState, DetectsTheEndOfATransientAndRejectsTrends)
     EXPECT_LT(start, 75);
     const drum::Average a = drum::average(settling, start);
     EXPECT_NEAR(a.mean, -0.1, 4.0 * a.stdError + 1e-4);
+    // one sample has no standard error
+    EXPECT_TRUE(std::isnan(drum::average({1.0, 2.0}, 1).stdError));
 }
 
 // An overshoot (rise, peak, settle) whose two halves have equal means must
 // not count as steady from the start: the case a half-means test misses.
-TEST(SteadyState, OvershootIsNotSteady)
+TEST(DrumSteadyState, OvershootIsNotSteady)
 {
     std::mt19937 rng(11);
     std::normal_distribution<double> noise(0.0, 0.3);
@@ -108,9 +214,9 @@ TEST(SteadyState, OvershootIsNotSteady)
     EXPECT_EQ(drum::steadyStart({std::vector<double>(angle.begin(), angle.begin() + 100)}), -1);
 }
 
-TEST(Compare, MatchesBeadsByIdAndReportsLargestDifferences)
+TEST(DrumCompare, MatchesBeadsByIdAndReportsLargestDifferences)
 {
-    drum::Snapshot a, b;
+    drum::Bed a, b;
     a.id = {1, 2, 3};
     b.id = {3, 1, 2};
     a.position = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
@@ -123,4 +229,81 @@ TEST(Compare, MatchesBeadsByIdAndReportsLargestDifferences)
     EXPECT_DOUBLE_EQ(d.velocity, 0.5);
     b.id = {4, 1, 2};
     EXPECT_THROW(drum::compare(a, b), std::runtime_error);
+}
+
+// A bead file without the velocity array `v` (older dumps): readBed loads it,
+// and the flowing-layer metrics are nan, not an error.
+TEST(DrumMetrics, BedFileWithoutVelocitiesGivesNanFlowingLayer)
+{
+    const drum::Bed b = bed(25.0, -0.06, 0.1, 2);
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    auto radius = vtkSmartPointer<vtkDoubleArray>::New(), force = vtkSmartPointer<vtkDoubleArray>::New();
+    radius->SetName("radius");
+    force->SetName("f_force_shell[1-3]");
+    force->SetNumberOfComponents(3);
+    for (size_t i = 0; i < b.position.size(); ++i) {
+        points->InsertNextPoint(b.position[i].data());
+        radius->InsertNextValue(b.radius[i]);
+        force->InsertNextTuple(b.wallForce[i].data());
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(points);
+    poly->GetPointData()->AddArray(radius);
+    poly->GetPointData()->AddArray(force);
+    const std::string file = (std::filesystem::temp_directory_path() / "drum_metrics_no_v.vtp").string();
+    auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    writer->SetFileName(file.c_str());
+    writer->SetInputData(poly);
+    ASSERT_EQ(writer->Write(), 1);
+    const drum::Bed read = drum::readBed(file, 0.5);
+    EXPECT_EQ(read.position.size(), b.position.size());
+    EXPECT_TRUE(read.velocity.empty());
+    const drum::BedMetrics m = drum::measureBed(read, 1.0);
+    // vtkPoints stores single precision
+    EXPECT_NEAR(m["Hh"], drum::measureBed(b, 1.0)["Hh"], 1e-7);
+    EXPECT_NEAR(m["drum_force"], 0.1, 1e-7);
+    EXPECT_TRUE(std::isnan(m["layer_thickness"]));
+    EXPECT_TRUE(std::isnan(m["surface_velocity"]));
+    std::filesystem::remove(file);
+}
+
+namespace {
+
+// The whitespace-separated words of a file.
+std::vector<std::string> words(const std::filesystem::path& file)
+{
+    std::ifstream in(file);
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    return w;
+}
+
+}  // namespace
+
+// drum_mesh regenerates the committed shells: the same words, numbers
+// (vertices, normals) within 1e-9 m.
+TEST(DrumMesh, RegeneratesTheCommittedMeshes)
+{
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "drum_mesh_test";
+    std::filesystem::create_directories(dir);
+    for (const auto& [length, segments] : {std::pair{6, 90}, {6, 180}, {6, 360}, {12, 180}, {24, 180}}) {
+        const std::string name = "drum_L" + std::to_string(length) + "_N" + std::to_string(segments) + ".stl";
+        const std::string command = std::string(DRUM_MESH) + " --length " + std::to_string(length * 1e-3) +
+                                    " --segments " + std::to_string(segments) + " -o " + (dir / name).string();
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        const std::vector<std::string> made = words(dir / name);
+        const std::vector<std::string> committed = words(std::filesystem::path(SOURCE_DIR) / "inputs/meshes" / name);
+        ASSERT_EQ(made.size(), committed.size()) << name;
+        ASSERT_GT(made.size(), 100u) << name;
+        for (size_t i = 0; i < made.size(); ++i) {
+            char* end = nullptr;
+            const double a = std::strtod(made[i].c_str(), &end);
+            if (*end != '\0' || end == made[i].c_str()) {
+                ASSERT_EQ(made[i], committed[i]) << name << " word " << i;
+                continue;
+            }
+            ASSERT_NEAR(a, std::stod(committed[i]), 1e-9) << name << " word " << i;
+        }
+    }
+    std::filesystem::remove_all(dir);
 }

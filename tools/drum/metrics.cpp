@@ -18,35 +18,13 @@
 
 namespace drum {
 
-Metrics measure(const Snapshot& s, double omegaSign)
-{
-    Metrics m;
-    m.time = s.time;
-    m.beads = static_cast<int>(s.position.size());
-    if (m.beads == 0) return m;
-    m.head = -1e300;
-    m.shoulder = -1e300;
-    double zsum = 0.0, ftsum = 0.0;
-    for (size_t i = 0; i < s.position.size(); ++i) {
-        const Eigen::Vector3d& x = s.position[i];
-        m.head = std::max(m.head, x.z());
-        zsum += x.z();
-        const Eigen::Vector3d& f = s.wallForce[i];
-        if (f.squaredNorm() > 0.0) {
-            ++m.wallContacts;
-            m.shoulder = std::max(m.shoulder, x.z());
-            // direction of the drum surface's motion at the bead: omega x r
-            const Eigen::Vector3d along = omegaSign * Eigen::Vector3d(0.0, -x.z(), x.y()).normalized();
-            ftsum += f.dot(along);
-        }
-    }
-    m.centreOfMass = zsum / m.beads;
-    if (m.wallContacts == 0) m.shoulder = NAN;
-    m.tangentialForce = m.wallContacts ? ftsum / m.wallContacts : NAN;
+namespace {
 
-    // Free surface: in 2-diameter wide bins across the drum, the height of
-    // the third-highest bead (robust to a couple of flying beads); a line
-    // through the central half of the bed gives the angle.
+bool touching(const Bed& b, size_t i) { return b.wallForce[i].squaredNorm() > 0.0; }
+
+FreeSurface fitFreeSurface(const Bed& s)
+{
+    FreeSurface fs;
     const double width = 4.0 * s.radius.front();
     std::map<long, std::vector<double>> bins;
     double ymin = 1e300, ymax = -1e300;
@@ -54,28 +32,190 @@ Metrics measure(const Snapshot& s, double omegaSign)
         bins[std::lround(std::floor(x.y() / width))].push_back(x.z());
         ymin = std::min(ymin, x.y()), ymax = std::max(ymax, x.y());
     }
-    const double yc = 0.5 * (ymin + ymax), half = 0.25 * (ymax - ymin);
+    fs.midY = 0.5 * (ymin + ymax);
+    const double half = 0.25 * (ymax - ymin);
     std::vector<double> ys, zs;
     for (auto& [k, z] : bins) {
         const double y = (k + 0.5) * width;
-        if (z.size() < 5 || std::fabs(y - yc) > half) continue;
+        if (z.size() < 5 || std::fabs(y - fs.midY) > half) continue;
         std::nth_element(z.begin(), z.begin() + 2, z.end(), std::greater<double>());
         ys.push_back(y), zs.push_back(z[2]);
     }
-    if (ys.size() >= 3) {
-        Eigen::MatrixXd A(ys.size(), 2);
-        Eigen::VectorXd b(ys.size());
-        for (size_t i = 0; i < ys.size(); ++i) A(i, 0) = 1.0, A(i, 1) = ys[i], b(i) = zs[i];
-        const Eigen::Vector2d fit = A.colPivHouseholderQr().solve(b);
-        // the bed rises on the side the drum carries it to
-        m.reposeAngle = std::atan(omegaSign * fit(1)) * 180.0 / M_PI;
-    } else {
-        m.reposeAngle = NAN;
+    if (ys.size() < 3) return fs;
+    Eigen::MatrixXd A(ys.size(), 2);
+    Eigen::VectorXd b(ys.size());
+    for (size_t i = 0; i < ys.size(); ++i) A(i, 0) = 1.0, A(i, 1) = ys[i], b(i) = zs[i];
+    const Eigen::Vector2d fit = A.colPivHouseholderQr().solve(b);
+    fs.found = true;
+    fs.intercept = fit(0), fs.slope = fit(1);
+    return fs;
+}
+
+// The flowing layer at mid-chord (Orpe & Khakhar 2001, Jain et al. 2002
+// measure the same quantities by particle tracking). With the free surface
+// z = a + b y of `angle` (FreeSurface) and d the bead diameter:
+//  - mid-chord P = (y_m, a + b y_m), the point of the line above the centre
+//    y_m of the bed's extent across y;
+//  - t: the unit vector along the line in the y-z plane pointing downhill
+//    (t_z < 0; on a level line, -y for a drum turning counter-clockwise);
+//    n: the unit normal pointing into the bed (n_z < 0);
+//  - the beads whose centre lies within 2 d of the normal through P
+//    (|(p - P).t| <= 2 d, any x) are binned by their depth h = (p - P).n,
+//    bin k = floor(h / d); beads above the line by less than d (the line
+//    passes through the third-highest bead of each surface bin, so the top
+//    layer's crests lie above it) count in bin 0, beads higher up (in flight)
+//    in none;
+//  - per bin: the mean depth and the mean streamwise velocity u = v.t.
+// Surface velocity: u of bin 0 (depths 0-1 d). Flowing-layer thickness: the
+// depth where the binned u first changes sign from positive (the layer flows
+// downhill) to negative or zero (the bed beneath turns with the drum and
+// moves uphill), by linear interpolation between the two bins' mean depths;
+// nan without such a crossing. Both nan without velocities.
+std::vector<DepthBin> velocityProfile(const Bed& s, const FreeSurface& fs, double d, double omegaSign)
+{
+    std::vector<DepthBin> profile;
+    if (!fs.found || s.velocity.size() != s.position.size()) return profile;
+    const double norm = std::hypot(1.0, fs.slope);
+    Eigen::Vector3d t(0.0, 1.0 / norm, fs.slope / norm);
+    if (t.z() > 0.0 || (t.z() == 0.0 && omegaSign > 0.0)) t = -t;
+    const Eigen::Vector3d n(0.0, fs.slope / norm, -1.0 / norm);
+    const Eigen::Vector3d P(0.0, fs.midY, fs.intercept + fs.slope * fs.midY);
+    std::map<int, DepthBin> bins;
+    for (size_t i = 0; i < s.position.size(); ++i) {
+        Eigen::Vector3d r = s.position[i] - P;
+        r.x() = 0.0;
+        const double h = r.dot(n);
+        if (std::fabs(r.dot(t)) > 2.0 * d || h < -d) continue;
+        const int k = static_cast<int>(std::floor(std::max(h, 0.0) / d));
+        DepthBin& b = bins[k];
+        b.index = k, ++b.beads, b.depth += h, b.u += s.velocity[i].dot(t);
     }
+    for (auto& [k, b] : bins) {
+        b.depth /= b.beads, b.u /= b.beads;
+        profile.push_back(b);
+    }
+    return profile;
+}
+
+double head(const BedAnalysis& a)
+{
+    double z = -INFINITY;
+    for (const Eigen::Vector3d& x : a.bed.position) z = std::max(z, x.z());
+    return a.bed.position.empty() ? NAN : z;
+}
+
+double shoulder(const BedAnalysis& a)
+{
+    double z = -INFINITY;
+    for (size_t i = 0; i < a.bed.position.size(); ++i)
+        if (touching(a.bed, i)) z = std::max(z, a.bed.position[i].z());
+    return a.wallContacts ? z : NAN;
+}
+
+double centreOfMass(const BedAnalysis& a)
+{
+    double z = 0.0;
+    for (const Eigen::Vector3d& x : a.bed.position) z += x.z();
+    return a.bed.position.empty() ? NAN : z / a.bed.position.size();
+}
+
+double drumForce(const BedAnalysis& a)
+{
+    double f = 0.0;
+    for (size_t i = 0; i < a.bed.position.size(); ++i) {
+        if (!touching(a.bed, i)) continue;
+        // direction of the drum surface's motion at the bead: omega x r
+        const Eigen::Vector3d& x = a.bed.position[i];
+        f += a.bed.wallForce[i].dot(a.omegaSign * Eigen::Vector3d(0.0, -x.z(), x.y()).normalized());
+    }
+    return a.wallContacts ? f / a.wallContacts : NAN;
+}
+
+double reposeAngle(const BedAnalysis& a)
+{
+    // the bed rises on the side the drum carries it to
+    return a.surface.found ? std::atan(a.omegaSign * a.surface.slope) * 180.0 / M_PI : NAN;
+}
+
+double surfaceVelocity(const BedAnalysis& a)
+{
+    return !a.profile.empty() && a.profile.front().index == 0 ? a.profile.front().u : NAN;
+}
+
+double layerThickness(const BedAnalysis& a)
+{
+    const std::vector<DepthBin>& p = a.profile;
+    if (std::isnan(surfaceVelocity(a)) || p.front().u <= 0.0) return NAN;
+    for (size_t i = 1; i < p.size(); ++i)
+        if (p[i].u <= 0.0) return p[i - 1].depth + (p[i].depth - p[i - 1].depth) * p[i - 1].u / (p[i - 1].u - p[i].u);
+    return NAN;
+}
+
+std::string unitTag(std::string unit)
+{
+    std::replace(unit.begin(), unit.end(), '/', 'p');
+    return unit;
+}
+
+}  // namespace
+
+std::string Metric::column() const { return key + "_" + unitTag(unit); }
+std::string Metric::seColumn() const { return key + "_se_" + unitTag(unit); }
+
+const std::vector<Metric>& metricTable()
+{
+    static const std::vector<Metric> table = {
+        {"Hh", "m", "head Hh", "head (Eq. 3.27): height of the highest bead centre above the drum axis", false, head},
+        {"Hd", "m", "departure shoulder Hd",
+         "departure shoulder (Eq. 3.26): height of the highest bead touching the drum above the axis", true, shoulder},
+        {"Hc", "m", "centre of mass Hc", "centre of mass (Eq. 3.28): mean height of the bead centres above the axis",
+         true, centreOfMass},
+        {"drum_force", "N", "drum force per touching bead",
+         "mean force of the drum on a touching bead along the drum's motion (Fig. 3.6)", false, drumForce},
+        {"angle", "deg", "dynamic angle of repose",
+         "dynamic angle of repose: slope of a line through the free surface over the central half of the bed", true,
+         reposeAngle},
+        {"layer_thickness", "m", "flowing-layer thickness",
+         "depth below the free surface at mid-chord where the mean streamwise velocity changes sign", false,
+         layerThickness},
+        {"surface_velocity", "m/s", "surface velocity",
+         "mean downhill velocity along the free surface of the beads within one diameter of it at mid-chord", false,
+         surfaceVelocity},
+    };
+    return table;
+}
+
+BedAnalysis analyseBed(const Bed& bed, double omegaSign)
+{
+    BedAnalysis a{bed, omegaSign, 0.0, 0, FreeSurface{}, {}};
+    if (bed.position.empty()) return a;
+    a.diameter = 2.0 * bed.radius.front();
+    for (size_t i = 0; i < bed.position.size(); ++i) a.wallContacts += touching(bed, i);
+    a.surface = fitFreeSurface(bed);
+    a.profile = velocityProfile(bed, a.surface, a.diameter, omegaSign);
+    return a;
+}
+
+double BedMetrics::operator[](const std::string& key) const
+{
+    const std::vector<Metric>& t = metricTable();
+    for (size_t i = 0; i < t.size(); ++i)
+        if (t[i].key == key) return values.at(i);
+    throw std::invalid_argument("no drum metric '" + key + "'");
+}
+
+BedMetrics measureBed(const Bed& bed, double omegaSign)
+{
+    const BedAnalysis a = analyseBed(bed, omegaSign);
+    BedMetrics m;
+    m.time = bed.time;
+    m.beads = static_cast<int>(bed.position.size());
+    m.wallContacts = a.wallContacts;
+    for (const Metric& metric : metricTable()) m.values.push_back(metric.value(a));
     return m;
 }
 
-Snapshot readSnapshot(const std::string& file, double time)
+Bed readBed(const std::string& file, double time)
 {
     vtkSmartPointer<vtkPointSet> data;
     if (file.size() > 4 && file.substr(file.size() - 4) == ".vtp") {
@@ -99,12 +239,14 @@ Snapshot readSnapshot(const std::string& file, double time)
 
     vtkDataArray* id = pd->GetArray("id");
     vtkDataArray* v = pd->GetArray("v");
+    if (v && v->GetNumberOfComponents() != 3) v = nullptr;
 
-    Snapshot s;
+    Bed s;
     s.time = time;
     const vtkIdType n = data->GetNumberOfPoints();
     s.position.resize(n), s.radius.resize(n), s.wallForce.resize(n);
-    if (id && v) s.id.resize(n), s.velocity.resize(n);
+    if (id) s.id.resize(n);
+    if (v) s.velocity.resize(n);
     for (vtkIdType i = 0; i < n; ++i) {
         double p[3], f[3];
         data->GetPoint(i, p);
@@ -112,19 +254,19 @@ Snapshot readSnapshot(const std::string& file, double time)
         s.position[i] = Eigen::Vector3d(p[0], p[1], p[2]);
         s.radius[i] = radius->GetTuple1(i);
         s.wallForce[i] = Eigen::Vector3d(f[0], f[1], f[2]);
-        if (id && v) {
+        if (id) s.id[i] = static_cast<long>(id->GetTuple1(i));
+        if (v) {
             double w[3];
             v->GetTuple(i, w);
-            s.id[i] = static_cast<long>(id->GetTuple1(i));
             s.velocity[i] = Eigen::Vector3d(w[0], w[1], w[2]);
         }
     }
     return s;
 }
 
-Difference compare(const Snapshot& a, const Snapshot& b)
+Difference compare(const Bed& a, const Bed& b)
 {
-    if (a.id.empty() || b.id.empty()) throw std::runtime_error("compare needs the arrays 'id' and 'v'");
+    if (a.id.empty() || b.id.empty() || a.velocity.empty() || b.velocity.empty()) throw std::runtime_error("compare needs the arrays 'id' and 'v'");
     std::map<long, size_t> index;
     for (size_t i = 0; i < b.id.size(); ++i) index[b.id[i]] = i;
     if (a.id.size() != b.id.size()) throw std::runtime_error("the snapshots hold different numbers of beads");
@@ -204,8 +346,10 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
 
 Average average(const std::vector<double>& v, int from)
 {
-    if (from < 0 || from >= static_cast<int>(v.size())) return {NAN, NAN};
-    return {mean(v, from, v.size()), stdErrorOfMean(v, from, v.size())};
+    const int n = static_cast<int>(v.size());
+    if (from < 0 || from >= n) return {NAN, NAN};
+    // one sample has no error estimate
+    return {mean(v, from, n), n - from < 2 ? NAN : stdErrorOfMean(v, from, n)};
 }
 
 }  // namespace drum

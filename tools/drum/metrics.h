@@ -1,7 +1,13 @@
 // Drum metrics from bead snapshots (thesis section 3.4.3): heights relative
 // to the drum axis (x axis), gravity along -z.
+//
+// Every metric is defined once, as an entry of metricTable(): its key, unit,
+// labels and the function that computes it from one bed. The per-snapshot
+// CSV, the time averages, the charts and the cross-speed table of
+// drum_metrics are all generated from that table.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -9,34 +15,72 @@
 
 namespace drum {
 
-// One snapshot: bead centres, radii and the force of the drum on each bead
-// (zero for beads not touching it).
-struct Snapshot {
+// One snapshot of the bed: bead centres, radii and the force of the drum on
+// each bead (zero for beads not touching it).
+struct Bed {
     double time = 0.0;
     std::vector<Eigen::Vector3d> position;
     std::vector<double> radius;
     std::vector<Eigen::Vector3d> wallForce;
-    std::vector<long> id;                     // when the file has them
-    std::vector<Eigen::Vector3d> velocity;    // likewise
+    std::vector<long> id;                     // when the file has them, else empty
+    std::vector<Eigen::Vector3d> velocity;    // likewise (VTP array `v`)
 };
 
-struct Metrics {
-    double time = 0.0;
+// The free surface: a straight line z = intercept + slope y fitted, over the
+// central half of the bed's extent across y, to the height of the
+// third-highest bead centre in bins two diameters wide (robust to a couple of
+// flying beads). `midY`: the centre of the bed's extent across y (the chord).
+struct FreeSurface {
+    bool found = false;
+    double intercept = NAN, slope = NAN, midY = NAN;
+};
+
+// Streamwise velocity against depth at mid-chord (see analyseBed): one entry
+// per non-empty depth bin, top down.
+struct DepthBin {
+    int index = 0;        // bin k holds depths [k d, (k+1) d); bin 0 also the beads up to d above the line
     int beads = 0;
-    double head = 0.0;            // Hh, Eq. 3.27: highest bead [m]
-    double shoulder = 0.0;        // Hd, Eq. 3.26: highest bead touching the drum [m]
-    double centreOfMass = 0.0;    // Hc, Eq. 3.28 (z) [m]
-    int wallContacts = 0;         // beads touching the drum
-    double tangentialForce = 0.0; // mean force of the drum on a touching bead along the drum's motion [N]
-    double reposeAngle = 0.0;     // dynamic angle of repose of the free surface [deg]
+    double depth = 0.0;   // mean depth of its beads [m]
+    double u = 0.0;       // their mean streamwise velocity [m/s]
 };
 
-// `omegaSign`: +1 if the drum turns counter-clockwise about +x (y towards z).
-Metrics measure(const Snapshot& s, double omegaSign);
+// What the metric functions read from one bed, each part computed once.
+struct BedAnalysis {
+    const Bed& bed;
+    double omegaSign = 1.0;  // +1: the drum turns counter-clockwise about +x (y towards z)
+    double diameter = 0.0;   // bead diameter d (from the first bead) [m]
+    int wallContacts = 0;    // beads touching the drum
+    FreeSurface surface;
+    std::vector<DepthBin> profile;  // empty without velocities or a free surface
+};
+BedAnalysis analyseBed(const Bed& bed, double omegaSign);
+
+// One row of the metric table. Column names: key + "_" + unit tag, standard
+// error key + "_se_" + unit tag, where the tag is the unit with '/' written
+// 'p' (m/s -> mps).
+struct Metric {
+    std::string key, unit;
+    std::string label;        // short, for chart axes and table headers
+    std::string description;  // one sentence, for `drum_metrics metrics`
+    bool steadiness;          // one of the series the steady-state detection watches
+    double (*value)(const BedAnalysis&);
+    std::string column() const;
+    std::string seColumn() const;
+};
+const std::vector<Metric>& metricTable();
+
+// The metrics of one bed, in table order.
+struct BedMetrics {
+    double time = 0.0;
+    int beads = 0, wallContacts = 0;
+    std::vector<double> values;
+    double operator[](const std::string& key) const;  // throws for a key not in the table
+};
+BedMetrics measureBed(const Bed& bed, double omegaSign);
 
 // Reads a LIGGGHTS custom/vtk bead file (.vtp or legacy .vtk) with arrays
-// radius and f_force_shell[1-3].
-Snapshot readSnapshot(const std::string& file, double time);
+// radius and f_force_shell[1-3] (and id, v when present).
+Bed readBed(const std::string& file, double time);
 
 // Largest position and velocity differences between the beads of two
 // snapshots, matched by id (both need ids and velocities); throws if their
@@ -45,7 +89,7 @@ struct Difference {
     int beads = 0;
     double position = 0.0, velocity = 0.0;  // [m], [m/s]
 };
-Difference compare(const Snapshot& a, const Snapshot& b);
+Difference compare(const Bed& a, const Bed& b);
 
 // Steady state: the sample index from which every metric has settled, by
 // the MSER rule (White 1997) applied to each series; -1 when a series'

@@ -1,6 +1,6 @@
 # Renders a drum snapshot to PNG with ParaView: beads coloured by speed, the
 # drum shell as an outline, looking along the drum axis.
-#   xvfb-run -a pvbatch tools/render_drum.py post/drum_21rpm [--step N] [--out drum.png]
+#   xvfb-run -a pvbatch tools/drum/render.py post/drum_21rpm [--step N] [--out drum.png]
 # (a ParaView built with offscreen rendering needs no xvfb-run)
 import argparse
 import glob

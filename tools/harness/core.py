@@ -2,6 +2,7 @@
 
 import argparse
 import os
+import platform
 import re
 import shutil
 import subprocess
@@ -34,9 +35,12 @@ def tool_path(name):
     return path
 
 
-def tool(name, *args, check=True):
-    """Runs a project binary from the repository root; returns its standard output."""
-    r = subprocess.run([tool_path(name), *map(str, args)], cwd=REPO, capture_output=True, text=True)
+def tool(name, *args, check=True, cwd=None):
+    """Runs a project binary (from the repository root, or `cwd`); returns its standard output."""
+    try:
+        r = subprocess.run([tool_path(name), *map(str, args)], cwd=cwd or REPO, capture_output=True, text=True)
+    except OSError as e:  # e.g. a binary being relinked
+        raise RunFailed(f"{name} could not be started: {e}") from e
     if check and r.returncode != 0:
         raise RunFailed(f"{name} {' '.join(map(str, args))} failed:\n{_tail(r.stdout + r.stderr)}")
     return r.stdout
@@ -76,14 +80,28 @@ def drum(log, np=2, check=True, **variables):
     return liggghts("inputs/drum.in", variables, log=log, np=np, check=check)
 
 
+def snapshots(prefix):
+    """The bead files PREFIX_<step>.vtp of a run as [(step, path)], in step order."""
+    prefix = Path(prefix)
+    return sorted((int(m.group(1)), f) for f in prefix.parent.glob(prefix.name + "_*.vtp")
+                  if (m := re.fullmatch(re.escape(prefix.name) + r"_(\d+)\.vtp", f.name)))
+
+
 def last_snapshot(prefix):
     """PREFIX_<step>.vtp with the highest step."""
-    prefix = Path(prefix)
-    files = [(int(m.group(1)), f) for f in prefix.parent.glob(prefix.name + "_*.vtp")
-             if (m := re.fullmatch(re.escape(prefix.name) + r"_(\d+)\.vtp", f.name))]
+    files = snapshots(prefix)
     if not files:
         raise RunFailed(f"no snapshots {prefix}_<step>.vtp")
-    return max(files)[1]
+    return files[-1][1]
+
+
+def machine():
+    """What results were measured on: cores, architecture, CPU model, LIGGGHTS package version."""
+    cpu = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                if line.startswith("model name")), platform.processor() or "?")
+    r = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "liggghts"], capture_output=True, text=True)
+    return {"cores": os.cpu_count(), "arch": platform.machine(), "cpu": cpu,
+            "liggghts": r.stdout if r.returncode == 0 and r.stdout else "?"}
 
 
 def materials(path=None):

@@ -39,6 +39,22 @@ class Log:
         """Loop time times ranks: the CPU cost of the loop."""
         return self.loop_time * self.procs
 
+    def thermo(self):
+        """The last thermo row as {column: value} (under LIGGGHTS' `Step ...` header); {} if none."""
+        header, row = None, {}
+        for line in self.text.splitlines():
+            w = line.split()
+            if w and w[0] == "Step":
+                header = w
+            elif header and len(w) == len(header):
+                try:
+                    row = dict(zip(header, map(float, w)))
+                except ValueError:
+                    header = None
+            elif line.startswith("Loop time"):
+                header = None
+        return row
+
     def grep(self, pattern, group=1, cast=str, default=None):
         """The first match of `pattern` (a regex with one group) in the log, cast; `default` if absent."""
         m = re.search(pattern, self.text, re.M)

@@ -2,6 +2,7 @@
 
 import csv
 import datetime
+import io
 import json
 import math
 import os
@@ -18,7 +19,12 @@ def _number(text):
 def read_csv(path):
     """Rows as dicts; numeric cells as floats ('nan' included), others as strings."""
     with open(path, newline="") as f:
-        return [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        return read_csv_text(f.read())
+
+
+def read_csv_text(text):
+    """CSV text (e.g. a tool's output) as read_csv reads a file."""
+    return [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(io.StringIO(text))]
 
 
 def write_csv(path, rows, columns=None):

@@ -1,0 +1,267 @@
+#!/usr/bin/python3
+"""Stability map: dt/tc swept past failure, for several en (--scenes, default all three):
+
+  binary  the head-on collision: the integrator's recurrence (`collide recurrence`; LIGGGHTS
+          follows it to round-off), mean and largest restitution over the contact-start phase;
+  column  inputs/column.in settled at tc/10, then --column-time s at each dt: stock
+          hooke/stiffness fed our constants (no guard: where does it fail?) and `model viscoelastic`
+          (what does the guard say?). Failure: beads leave the box, or the settled column's kinetic
+          energy ends above --column-ke (about m g d per bead: a settled bed cannot have it);
+  drum    the settled 6 mm slab (--restart) at 21 rpm continued for --drum-time s at each dt, the
+          --drum-runs en:model pairs (en `table` = Table 3.1 with the thesis conventions). Failure:
+          the run stops (beads leave through the drum wall), beads are missing at the end, or the
+          kinetic energy ends above twice that of the same pair at the reference dt/tc.
+The guard's limits come from `contact_law limit`. --append merges drum rows into an existing
+OUT/stability_drum.csv (a rerun of the same en, dt/tc and model replaces the old row).
+Writes OUT/stability_{binary,column,drum,limits}.csv and OUT/stability.json."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+import harness  # noqa: E402
+import common  # noqa: E402
+
+RUN_COLUMNS = ["en", "dt_over_tc", "model", "status", "beads_kept", "beads", "ke_final_J", "guard"]
+MODELS = ("hooke", "viscoelastic")
+DRUM_ENERGY_FACTOR = 2  # the drum fails when its kinetic energy ends above this times the reference's
+
+
+def parser():
+    p = harness.options(__doc__, np=2, out=common.RESULTS)
+    p.add_argument("--scenes", default="binary,column,drum", help="of binary,column,drum (default: all)")
+    p.add_argument("--en", default="0.3,0.56,0.9", help="binary and column (default: 0.3,0.56,0.9)")
+    p.add_argument("--fractions", default="0.1,0.2,0.25,0.3,0.35,0.4,0.45,0.5,0.55,0.6",
+                   help="dt/tc of the binary and column scenes")
+    p.add_argument("--column-time", type=float, default=0.05, help="s per column run (default: 0.05)")
+    p.add_argument("--settle-time", type=float, default=0.25, help="s to settle the column (default: 0.25)")
+    p.add_argument("--column-ke", type=float, default=1e-3, help="column failure energy [J] (default: 1e-3)")
+    p.add_argument("--restart", type=Path, help="the settled 6 mm drum slab (drum scene)")
+    p.add_argument("--drum-runs", default="0.3:hooke,0.9:hooke,table:hooke,table:viscoelastic", help="en:model pairs")
+    p.add_argument("--drum-fractions", default="0.1,0.2,0.25,0.3,0.35,0.4,0.45,0.5", help="dt/tc of the drum scene")
+    p.add_argument("--drum-time", type=float, default=0.03, help="s per drum run (default: 0.03)")
+    p.add_argument("--reference", type=float, default=0.1, help="dt/tc of the drum's energy reference (default: 0.1)")
+    p.add_argument("--append", action="store_true", help="merge the drum rows into OUT/stability_drum.csv")
+    return p
+
+
+def classify(ran, kept, total, ke, ke_limit):
+    """A run's status from its log's numbers: `stopped` (LIGGGHTS exited with an error), `failed`
+    (beads lost, or the kinetic energy ended above ke_limit), or `ok`."""
+    if not ran:
+        return "stopped"
+    return "failed" if kept < total or ke > ke_limit else "ok"
+
+
+def run_row(en, fraction, model, log, ke_limit, ke):
+    kept = log.grep(r"^(?:column|drum): done, (\d+) beads kept", cast=int, default=0)
+    total = log.grep(r"^(?:column|drum): (\d+) beads(?:, dt| \(target)", cast=int, default=0)
+    return {"en": en, "dt_over_tc": fraction, "model": model, "guard": "error" if common.guard_stopped(log) else "none",
+            "status": classify(log.returncode == 0, kept, total, ke, ke_limit), "beads_kept": kept, "beads": total,
+            "ke_final_J": ke}
+
+
+def binary(ens, fractions):
+    rows = []
+    for en in ens:
+        text = harness.tool("collide", "recurrence", "--en", en, "--dt-over-tc", *fractions)
+        rows += [dict(en=en, **r) for r in harness.read_csv_text(text)]
+    return rows
+
+
+def column(ens, fractions, args):
+    rows = []
+    for en in ens:
+        tag = f"column_en{en:g}"
+        harness.say("stability", f"settling the column, en {en:g} ...")
+        harness.liggghts("inputs/column.in", {"en": en, "time": args.settle_time, "name": f"stability/{tag}"},
+                         log=harness.post(f"stability/{tag}.log"))
+        stock = common.stock_file(harness.post(f"stability/stock_{en:g}.in"), uniform=en)
+        for f in fractions:
+            for model in MODELS:
+                name = f"stability/{tag}_{f:g}_{model}"
+                log = harness.liggghts("inputs/column.in", {
+                    "start": "restart", "restart": harness.post(f"stability/{tag}.restart"), "en": en,
+                    "time": args.column_time, "dt": f"{f * common.tc():.6g}", "model": model, "stock": stock,
+                    "name": name}, log=harness.post(name + ".log"), check=False)
+                ke = log.grep(r"^column: done, .* ke (\S+) J", cast=float, default=float("nan"))
+                rows.append(run_row(en, f, model, log, args.column_ke, ke))
+                harness.say("stability", f"column en {en:g}, dt/tc {f:g}, {model}: {rows[-1]['status']}")
+    return rows
+
+
+def drum(args):
+    fractions = common.numbers(args.drum_fractions)
+    fractions = [args.reference] + [f for f in fractions if f != args.reference]
+    rows = []
+    for spec in common.words(args.drum_runs):
+        en, model = spec.split(":")
+        stock = common.stock_file(harness.post(f"stability_drum/stock_{en}.in"),
+                                  uniform=None if en == "table" else float(en))
+        ke_ref = float("inf")
+        for f in fractions:
+            tag = f"stability_drum/en{en}_{f:g}_{model}"
+            log = harness.drum(harness.post(tag + ".log"), np=args.np, check=False, start="restart",
+                               restart=args.restart, rpm=common.RPM, dt=f"{f * common.tc():.6g}", time=args.drum_time,
+                               dumpdt=1, model=model, stock=stock, name=tag)
+            ke = log.thermo().get("KinEng", float("nan"))
+            if f == args.reference and log.returncode == 0:
+                ke_ref = ke
+            rows.append(run_row(en if en == "table" else float(en), f, model, log, DRUM_ENERGY_FACTOR * ke_ref, ke))
+            harness.say("stability", f"drum en {en}, dt/tc {f:g}, {model}: {rows[-1]['status']}")
+    return rows
+
+
+def merge(old, new):
+    """Drum rows: `new` replaces the rows of `old` with the same en, dt/tc and model."""
+    key = lambda r: (str(r["en"]), float(r["dt_over_tc"]), r["model"])  # noqa: E731
+    merged = {key(r): r for r in old}
+    merged.update({key(r): r for r in new})
+    return list(merged.values())
+
+
+def run(args):
+    out = Path(args.out)
+    scenes = common.words(args.scenes)
+    ens, fractions = common.numbers(args.en), common.numbers(args.fractions)
+    if "binary" in scenes:
+        harness.write_csv(out / "stability_binary.csv", binary(ens, fractions))
+    if "column" in scenes:
+        harness.write_csv(out / "stability_column.csv", column(ens, fractions, args), RUN_COLUMNS)
+    if "drum" in scenes:
+        if not args.restart:
+            raise SystemExit("stability: the drum scene needs --restart FILE (a settled 6 mm drum)")
+        rows = drum(args)
+        if args.append and (out / "stability_drum.csv").exists():
+            rows = merge(harness.read_csv(out / "stability_drum.csv"), rows)
+        harness.write_csv(out / "stability_drum.csv", rows, RUN_COLUMNS)
+    m = harness.materials()
+    harness.write_csv(out / "stability_limits.csv", [common.limits(en) for en in sorted(set(ens) | {m["drum_en"]})])
+    meta = harness.read_json(out / "stability.json") if (out / "stability.json").exists() else {}
+    meta.update({"column_time_s": args.column_time, "column_ke_J": args.column_ke, "settle_ratio": 10,
+                 "drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()})
+    if "drum" in scenes:
+        meta.update({"drum_time_s": args.drum_time, "drum_restart": str(args.restart), "reference": args.reference})
+    harness.write_json(out / "stability.json", meta)
+
+
+def first(rows, test):
+    """The smallest dt/tc of the rows that pass `test` (None if none does)."""
+    hits = [r["dt_over_tc"] for r in rows if test(r)]
+    return min(hits) if hits else None
+
+
+def summary(binary_rows, column_rows, drum_rows, limits, bead_en, drum_en):
+    """One row per en: binary limit, where things fail, where the guard stops, and whether it stops first."""
+    rows = []
+    for en in sorted({r["en"] for r in column_rows}):
+        b = [r for r in binary_rows if r["en"] == en]
+        grow = first(b, lambda r: r["restitution_mean"] > 1)
+        cfail = first(column_rows, lambda r: r["en"] == en and r["model"] == "hooke" and r["status"] != "ok")
+        guard = first(column_rows, lambda r: r["en"] == en and r["model"] == "viscoelastic" and r["guard"] == "error")
+        # the drum's Table 3.1 runs are the bead en's row; their bead-drum pairs set its guard
+        den, dguard_en = ("table", drum_en) if en == bead_en else (en, en)
+        dfail = first(drum_rows, lambda r: str(r["en"]) == str(den) and r["model"] == "hooke" and r["status"] != "ok")
+        g, gd = limits[en]["guard_tc"], limits[dguard_en]["guard_tc"]
+        before = all(x is None or lim < x for lim, x in ((g, cfail), (g, grow), (gd, dfail)))
+        rows.append({"en": en, "limit": limits[en]["binary_limit_tc"], "grow": grow, "cfail": cfail, "dfail": dfail,
+                     "guard": f"{g:.4g}" + (f"; drum {gd:.4g} (bead-drum en {dguard_en:g})" if dguard_en != en else ""),
+                     "guard_column": guard, "before": "yes" if before else "NO"})
+    return rows
+
+
+def chart(binary_rows, column_rows, drum_rows, meta, path):
+    fig, axes = harness.figure(1, 3 if drum_rows else 2, size=(6.3, 5.2))
+    a = axes[0]
+    for i, en in enumerate(sorted({r["en"] for r in binary_rows})):
+        b = [r for r in binary_rows if r["en"] == en]
+        a.plot([r["dt_over_tc"] for r in b], [r["restitution_mean"] for r in b], "o-", color=f"C{i}", label=f"mean, en {en:g}")
+        a.plot([r["dt_over_tc"] for r in b], [r["restitution_max"] for r in b], "--", color=f"C{i}", label=f"max, en {en:g}")
+    a.axhline(1, color="black", lw=1)
+    a.set(title="binary collision (the integrator recurrence)", ylabel="restitution, phase-averaged / largest single contact",
+          ylim=(0, 2.5))
+    c = axes[1]
+    for en in sorted({r["en"] for r in column_rows}):
+        s = [r for r in column_rows if r["en"] == en and r["model"] == "hooke"]
+        c.plot([r["dt_over_tc"] for r in s], [r["ke_final_J"] for r in s], "o-", label=f"en {en:g}")
+    c.axhline(meta["column_ke_J"], color="black", ls=":", label="failure threshold")
+    c.set(title="dense column, stock hooke/stiffness with our constants", yscale="log", ylim=(1e-9, 1),
+          ylabel=f"kinetic energy after {meta['column_time_s']:g} s [J]")
+    if drum_rows:
+        d = axes[2]
+        for en in dict.fromkeys(str(r["en"]) for r in drum_rows):
+            s = sorted((r for r in drum_rows if str(r["en"]) == en and r["model"] == "hooke"), key=lambda r: r["dt_over_tc"])
+            if s:
+                d.plot([r["dt_over_tc"] for r in s], [10 if r["status"] == "stopped" else r["ke_final_J"] for r in s], "o-",
+                       label="Table 3.1" if en == "table" else f"en {en}")
+        ref = [r["ke_final_J"] for r in drum_rows if r["dt_over_tc"] == meta["reference"] and r["status"] == "ok"]
+        d.axhline(meta["drum_energy_factor"] * harness.median(ref), color="black", ls=":",
+                  label=f"failure threshold ({meta['drum_energy_factor']}x the dt/tc {meta['reference']:g} energy)")
+        d.set(title="drum, stock hooke/stiffness", yscale="log", ylim=(1e-3, 20),
+              ylabel=f"kinetic energy after {meta['drum_time_s']:g} s [J]; stopped runs at 10 J")
+    for ax in axes:
+        ax.set_xlabel("dt / tc")
+        ax.legend(fontsize=7)
+    harness.save(fig, path)
+
+
+RUN_TABLE = [("en", lambda r: f"{r['en']:g}" if isinstance(r["en"], float) else r["en"], None),
+             ("dt/tc", "dt_over_tc", "{:g}"), ("model", "model", None), ("status", "status", None),
+             ("beads kept", lambda r: f"{r['beads_kept']:.0f}/{r['beads']:.0f}", None),
+             ("kinetic energy [J]", "ke_final_J", "{!r}"), ("guard", "guard", None)]
+
+
+def section(res):
+    if not res.has("stability_binary.csv", "stability_column.csv", "stability_limits.csv", "stability.json"):
+        return common.not_run("stability")
+    meta, binary_rows, column_rows = res.json("stability.json"), res.csv("stability_binary.csv"), res.csv("stability_column.csv")
+    drum_rows = res.csv("stability_drum.csv") if res.has("stability_drum.csv") else []
+    drum_rows.sort(key=lambda r: (str(r["en"]), r["model"], r["dt_over_tc"]))
+    limits = {r["en"]: r for r in res.csv("stability_limits.csv")}
+    m = harness.materials()
+    chart(binary_rows, column_rows, drum_rows, meta, res.path("stability.png"))
+    ens = sorted({r["en"] for r in column_rows})
+    beads = int(column_rows[0]["beads"])
+    text = (
+        f"dt/tc swept past failure for en = {common.fmt_list(ens)} (tc = {common.sci(m['bead_tc'])} s). Binary collision: the\n"
+        "integrator's recurrence (LIGGGHTS follows it to round-off). Dense column: `inputs/column.in`,\n"
+        f"{beads} beads settled at tc/{meta['settle_ratio']}, then {meta['column_time_s']:g} s at each dt, with stock "
+        "hooke/stiffness fed our constants\n"
+        "(no guard) and with `model viscoelastic` (guard); the drum likewise (below). Failure: beads leave the box "
+        "or the kinetic\n"
+        f"energy of the settled column ends above {common.sci(meta['column_ke_J'])} J. The guard stops runs above half the binary "
+        "limit\n"
+        "(`model viscoelastic` and stock runs are otherwise identical: same kinetic energies below).\n\n"
+        + res.image("stability", "stability.png") + "\n"
+        + harness.markdown(summary(binary_rows, column_rows, drum_rows, limits, m["bead_en"], m["drum_en"]), [
+            ("en", "en", "{:g}"), ("binary limit (Jury) dt/tc", "limit", "{:.4g}"),
+            ("binary: mean restitution > 1 from dt/tc", lambda r: "none" if r["grow"] is None else f"{r['grow']:.4f}", None),
+            ("column (stock) fails from dt/tc", lambda r: "none" if r["cfail"] is None else f"{r['cfail']:g}", None),
+            ("drum (stock) fails from dt/tc", lambda r: "none" if r["dfail"] is None else f"{r['dfail']:g}", None),
+            ("guard: ERROR above dt/tc (half the limit)", "guard", None),
+            ("guard ERROR in the column runs from dt/tc",
+             lambda r: "none" if r["guard_column"] is None else f"{r['guard_column']:g}", None),
+            ("guard stops before failure", "before", None)])
+        + "\n<details><summary>all column runs</summary>\n\n" + harness.markdown(column_rows, RUN_TABLE) + "\n</details>\n\n")
+    if drum_rows:
+        beads = int(max(r["beads"] for r in drum_rows))
+        uniform = sorted({r["en"] for r in drum_rows if r["en"] != "table"})
+        uniform = f"en = {common.fmt_list(uniform, ' and ')} for every pair and with " if uniform else ""
+        text += (
+            f"Drum: the settled 6 mm slab ({beads:,} beads, {common.RPM} rpm) continued for {meta['drum_time_s']:g} s at "
+            "each dt, stock\n"
+            f"hooke/stiffness with {uniform}Table 3.1 (beads {m['bead_en']:g}, drum {m['drum_en']:g};\n"
+            f"the {m['bead_en']:g} row above), and `model viscoelastic` with Table 3.1. Failure: the run stops "
+            "(beads leave\n"
+            f"through the drum wall), beads are missing, or the kinetic energy ends above "
+            f"{'twice' if meta['drum_energy_factor'] == 2 else str(meta['drum_energy_factor']) + ' times'} that at tc/{1 / meta['reference']:g}.\n\n"
+            + harness.markdown(drum_rows, RUN_TABLE) + "\n")
+    restart = meta.get("drum_restart")
+    return text + common.sh(common.command("stability.py", scenes="binary,column"),
+                            common.command("stability.py", scenes="drum", restart=restart),
+                            common.command("stability.py", scenes="drum", restart=restart, drum_runs="0.3:hooke",
+                                           drum_fractions="0.21,0.22,0.23,0.24", append=True))
+
+
+if __name__ == "__main__":
+    run(parser().parse_args())

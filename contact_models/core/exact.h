@@ -1,0 +1,179 @@
+// `exactRestitution on`: coefficients per unit meff for which the
+// phase-averaged discrete collision (discrete.h) restitutes en and et and
+// lasts tc at a given timestep.
+//
+// Normal: two unknowns, two conditions. The unknowns are the (tc', en') fed
+// to the Pournin formulas (Eq. 3.22-3.23), so the continuous solution is the
+// starting point and the answer stays readable; Newton's method with a
+// finite-difference Jacobian on (ln e, duration).
+// Tangential: the tangential oscillator keeps the normal one's discrete
+// frequency (the leapfrog's rotation angle per step), as Pournin's constants
+// give both the same continuous frequency pi/tc; this leaves the tangential
+// damping, found by bisection on et (which falls monotonically with it).
+// Without limitForce, requested restitutions near 1 can need negative damping
+// (the discrete contact dissipates nothing at cn = 0 but restitutes slightly
+// off 1); the solver then switches that dashpot off and reports what the
+// contact restitutes instead, rather than return an unstable dashpot.
+//
+// Results are numbers only; contact_models/messages.h words them.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "discrete.h"
+#include "pournin.h"
+
+namespace viscoelastic {
+
+enum class ExactFailure {
+    none,
+    normalUnreachable,     // Newton found no (tc', en') reaching en and tc
+    tangentialUnreachable  // et is below what any tangential dashpot reaches
+};
+
+struct ExactSolution {
+    UnitCoefficients unit{};            // per unit meff, like pourninUnitCoefficients
+    DiscreteCollision achieved;         // phase-averaged outcome with `unit`
+    double tcNormal = 0, enNormal = 0;  // the (tc', en') of the normal solution
+
+    // The request, so the result can be described on its own.
+    ContactParameters requested{};
+    double dt = 0;
+    bool limitForce = false;
+
+    ExactFailure failure = ExactFailure::none;
+    // normalUnreachable: the closest solution's ln(e / en) and duration / tc - 1
+    double closestLnRestitutionError = 0, closestDurationError = 0;
+    // Set when a request needed a negative dashpot, which is then off, and
+    // the undamped contact restitutes this instead of en (et) (see above).
+    std::optional<double> undampedRestitution, undampedTangentialRestitution;
+
+    bool ok() const { return failure == ExactFailure::none; }
+};
+
+namespace detail {
+
+// Rotation angle per step of the leapfrog amplification matrix of an
+// oscillator with stiffness k and damping c per unit mass (trace
+// 2 - c dt - k dt^2, determinant 1 - c dt); NaN when not oscillatory.
+inline double stepAngle(double k, double c, double dt)
+{
+    const double r = std::sqrt(1.0 - c * dt);
+    return std::acos((2.0 - c * dt - k * dt * dt) / (2.0 * r));
+}
+
+// Tangential stiffness per unit tangential mass that gives damping c the step angle theta.
+inline double stiffnessForAngle(double theta, double c, double dt)
+{
+    return (2.0 - c * dt - 2.0 * std::sqrt(1.0 - c * dt) * std::cos(theta)) / (dt * dt);
+}
+
+// Damped Newton iteration with a central-difference Jacobian on n <= 2
+// unknowns z, residual(z, r); true when |r| falls below 1e-9.
+template <class Residual>
+bool newton(Residual residual, double* z, double* r, std::array<double, 2> h, int n)
+{
+    auto norm = [n](const double* v) { return n == 1 ? std::fabs(v[0]) : std::hypot(v[0], v[1]); };
+    residual(z, r);
+    for (int it = 0; it < 60 && norm(r) > 1e-9; ++it) {
+        double J[2][2] = {{1, 0}, {0, 1}};
+        for (int k = 0; k < n; ++k) {
+            double zp[2] = {z[0], z[1]}, zm[2] = {z[0], z[1]}, rp[2], rm[2];
+            zp[k] += h[k], zm[k] -= h[k];
+            residual(zp, rp);
+            residual(zm, rm);
+            for (int i = 0; i < n; ++i) J[i][k] = (rp[i] - rm[i]) / (2.0 * h[k]);
+        }
+        const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        if (!(std::fabs(det) > 0.0)) return false;
+        const double step[2] = {n == 1 ? -r[0] / J[0][0] : -(J[1][1] * r[0] - J[0][1] * r[1]) / det,
+                                n == 1 ? 0.0 : -(J[0][0] * r[1] - J[1][0] * r[0]) / det};
+        // halve the step until the residual falls and z[0] (a duration) stays positive
+        bool moved = false;
+        for (double lambda = 1.0; lambda > 1e-4 && !moved; lambda *= 0.5) {
+            double zz[2] = {z[0] + lambda * step[0], z[1] + lambda * step[1]}, rz[2];
+            if (zz[0] <= 0.0) continue;
+            residual(zz, rz);
+            if (norm(rz) < norm(r)) {
+                for (int i = 0; i < n; ++i) z[i] = zz[i], r[i] = rz[i];
+                moved = true;
+            }
+        }
+        if (!moved) return false;
+    }
+    return norm(r) <= 1e-9;
+}
+
+// Normal coefficients per unit meff of Pournin's formulas for (tc', ln en').
+inline UnitCoefficients normalOnly(double tcPrime, double lnEnPrime)
+{
+    const Oscillator n = pourninOscillator(tcPrime, lnEnPrime);
+    return {n.k, n.c, 0.0, 0.0};
+}
+
+}  // namespace detail
+
+inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt, bool limitForce)
+{
+    ExactSolution s;
+    s.requested = p, s.dt = dt, s.limitForce = limitForce;
+    // -- normal: Newton on r(tc', ln en') = (ln e - ln en, duration / tc - 1)
+    auto residual = [&](const double* z, double* r) {
+        const DiscreteCollision d = phaseAveragedCollision(detail::normalOnly(z[0], z[1]), dt, limitForce);
+        r[0] = std::log(d.restitution) - std::log(p.en);
+        r[1] = d.duration / p.tc - 1.0;
+    };
+    double q[2] = {p.tc, std::log(p.en)}, r[2];
+    const bool converged = detail::newton(residual, q, r, {1e-7 * p.tc, 1e-7}, 2);
+    if (converged && q[1] > 0.0) {
+        // negative damping: keep the dashpot off, match the duration only
+        q[1] = 0.0;
+        auto durationOnly = [&](const double* z, double* rr) {
+            double full[2];
+            const double zz[2] = {z[0], 0.0};
+            residual(zz, full);
+            rr[0] = full[1];
+        };
+        double r1[1];
+        detail::newton(durationOnly, q, r1, {1e-7 * p.tc, 0.0}, 1);
+        residual(q, r);
+        if (std::fabs(r[0]) > 1e-6) s.undampedRestitution = std::exp(r[0]) * p.en;
+    } else if (!converged) {
+        s.failure = ExactFailure::normalUnreachable;
+        s.closestLnRestitutionError = r[0], s.closestDurationError = r[1];
+        return s;
+    }
+    s.tcNormal = q[0], s.enNormal = std::exp(q[1]);
+    const UnitCoefficients u = detail::normalOnly(q[0], q[1]);
+
+    // -- tangential: same step angle as the normal oscillator, damping by bisection
+    const double theta = detail::stepAngle(u.kn, u.cn, dt);
+    const double mt = kTangentialMassRatio;
+    auto tangential = [&](double c) {
+        UnitCoefficients v = u;
+        v.kt = mt * detail::stiffnessForAngle(theta, c, dt);
+        v.ct = mt * c;
+        return v;
+    };
+    auto et = [&](double c) { return phaseAveragedCollision(tangential(c), dt, limitForce).tangentialRestitution; };
+    double lo = 0.0, hi = 0.999 / dt;  // damping per unit tangential mass; 1 - c dt > 0
+    if (et(lo) <= p.et) {
+        if (et(lo) < p.et * (1.0 - 1e-6)) s.undampedTangentialRestitution = et(lo);
+        hi = lo;
+    }
+    if (et(hi) > p.et) {
+        s.failure = ExactFailure::tangentialUnreachable;
+        return s;
+    }
+    for (int it = 0; it < 100 && hi - lo > 1e-13 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (et(mid) > p.et ? lo : hi) = mid;
+    }
+    s.unit = tangential(0.5 * (lo + hi));
+    s.achieved = phaseAveragedCollision(s.unit, dt, limitForce);
+    return s;
+}
+
+}  // namespace viscoelastic

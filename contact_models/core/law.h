@@ -1,0 +1,82 @@
+// The viscoelastic contact law per step (Cundall's linear spring-dashpot):
+// normal force (Eq. 3.20), Coulomb limit (Eq. 3.18) and the thesis'
+// tangential law (Eq. 3.5, 3.18-3.21).
+//
+// Sign conventions follow LIGGGHTS: the contact normal n points from body j
+// to body i, the overlap is positive while touching, the overlap rate is
+// -(v_i - v_j).n (positive while approaching), and forces are those on i.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "pournin.h"
+
+namespace viscoelastic {
+
+using Vec3 = Eigen::Vector3d;
+
+// Eq. 3.20. With limitForce the attractive end of the contact is cut off
+// (YADE's convention); without it the nominal en and tc are exact.
+inline double normalForce(const Coefficients& c, double overlap, double overlapRate, bool limitForce)
+{
+    const double f = c.kn * overlap + c.cn * overlapRate;
+    return (limitForce && f < 0.0) ? 0.0 : f;
+}
+
+// Friction threshold of Eq. 3.18. Without limitForce the end of a contact
+// is attractive; bounding friction by |Fn| there (as LIGGGHTS' history model
+// does) lets a sticking contact finish its tangential half-oscillation, so
+// the nominal et is achieved exactly like en.
+inline double frictionLimit(double mu, double normalForce)
+{
+    return mu * std::fabs(normalForce);
+}
+
+// Rotates v by the smallest rotation taking unit vector `from` to unit vector
+// `to`: the exact integral of Eq. 3.5's (n x dn/dt) x xi term over a step in
+// which the normal turns in one plane.
+inline Vec3 rotateWithNormal(const Vec3& v, const Vec3& from, const Vec3& to)
+{
+    const Vec3 k = from.cross(to);
+    const double c = from.dot(to);
+    if (c <= -1.0 + 1e-12) return -v;  // reversed normal: cannot happen within one step
+    return v + k.cross(v) + k.cross(k.cross(v)) / (1.0 + c);
+}
+
+// Per-contact state of the `pournin` tangential law: the tangential overlap
+// xi_t (Eq. 3.9) and the normal it was last expressed in.
+struct TangentialState {
+    Vec3 xi = Vec3::Zero();
+    Vec3 normal = Vec3::Zero();  // zero before the first step of a contact
+};
+
+// Tangential law of the thesis (Eq. 3.18-3.21) for one step.
+// The overlap is carried with the rotating contact frame (rotated, not
+// projected, so its length survives a turning normal), then advanced by the
+// tangential velocity of i relative to j at the contact point, vt. The
+// Coulomb cap applies to the total force kt xi + ct dxi/dt; when it binds the
+// spring is reset so that it reproduces the capped force (Luding 2008), which
+// keeps the force continuous when sliding stops.
+// Returns the tangential force on i. `advance` is false when LIGGGHTS only
+// evaluates forces without moving history (e.g. `run 0`).
+inline Vec3 pourninTangentialForce(TangentialState& s, const Vec3& n, const Vec3& vt, double kt,
+                                   double ct, double limit, double dt, bool advance)
+{
+    if (advance) {
+        if (s.normal.squaredNorm() > 0.0) s.xi = rotateWithNormal(s.xi, s.normal, n);
+        s.xi += vt * dt;
+        s.xi -= s.xi.dot(n) * n;  // round-off only: the rotation keeps xi in the plane
+        s.normal = n;
+    }
+    Vec3 f = -(kt * s.xi + ct * vt);
+    const double fmag = f.norm();
+    if (fmag > limit) {
+        f *= (fmag > 0.0 ? limit / fmag : 0.0);
+        if (advance && kt > 0.0) s.xi = -(f + ct * vt) / kt;
+    }
+    return f;
+}
+
+}  // namespace viscoelastic

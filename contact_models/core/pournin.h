@@ -1,0 +1,83 @@
+// Pournin et al. (2001) coefficients of the linear spring-dashpot law
+// (Eq. 3.22-3.25): the contact constants that make a binary collision last tc
+// and restitute en (normal) and et (tangential, sticking), and their inverse.
+// Pure C++, no I/O: the LIGGGHTS models, the tools and the tests share it.
+#pragma once
+
+#include <cmath>
+
+namespace viscoelastic {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// m_t / meff for two solid spheres (I = 2/5 m R^2), or a solid sphere and a
+// wall: (1/meff + R1^2/I1 + R2^2/I2)^-1 = 2/7 meff.
+constexpr double kTangentialMassRatio = 2.0 / 7.0;
+
+// Material data of one type pair, as given in the input script.
+struct ContactParameters {
+    double tc;  // contact duration [s]
+    double en;  // normal restitution coefficient, (0, 1]
+    double et;  // tangential restitution coefficient, (0, 1]
+    double mu;  // Coulomb friction coefficient, >= 0
+};
+
+// Spring and dashpot constants divided by the contact's effective mass meff:
+// kn [1/s^2], cn [1/s], kt [1/s^2], ct [1/s]. They depend on the type pair
+// only, so they are computed once at init; a contact multiplies by its meff.
+struct UnitCoefficients {
+    double kn, cn, kt, ct;
+};
+
+// Contact constants of one contact: kn, kt [N/m], cn, ct [N s/m].
+struct Coefficients {
+    double kn, cn, kt, ct;
+};
+
+// Stiffness k [1/s^2] and damping c [1/s] of one oscillator per unit meff.
+struct Oscillator {
+    double k, c;
+};
+
+// Eq. 3.22-3.23 (massRatio 1) and 3.24-3.25 (massRatio m_t/meff):
+//     k = m (pi^2 + ln^2 e) / tc^2,   c = -2 m ln e / tc.
+// Written in ln e so that the exact-restitution solver may step through
+// e > 1 (negative damping) without leaving the formula.
+inline Oscillator pourninOscillator(double tc, double lnE, double massRatio = 1.0)
+{
+    return {massRatio * (kPi * kPi + lnE * lnE) / (tc * tc), -2.0 * massRatio * lnE / tc};
+}
+
+// The (tc, ln e) a Pournin oscillator is made of.
+struct DurationAndRestitution {
+    double tc;   // [s]
+    double lnE;  // ln of the restitution coefficient
+};
+
+// Inverse of Eq. 3.22-3.23 for k, c per unit mass: the damped frequency
+// sqrt(k - c^2/4) is pi/tc, and the decay over tc is e = exp(-c tc / 2).
+inline DurationAndRestitution pourninInverse(double k, double c)
+{
+    const double tc = kPi / std::sqrt(k - 0.25 * c * c);
+    return {tc, -0.5 * c * tc};
+}
+
+// Eq. 3.22-3.25 per unit effective mass, with m_t = 2/7 meff.
+inline UnitCoefficients pourninUnitCoefficients(double tc, double en, double et)
+{
+    const Oscillator normal = pourninOscillator(tc, std::log(en));
+    const Oscillator tangential = pourninOscillator(tc, std::log(et), kTangentialMassRatio);
+    return {normal.k, normal.c, tangential.k, tangential.c};
+}
+
+inline UnitCoefficients pourninUnitCoefficients(const ContactParameters& p)
+{
+    return pourninUnitCoefficients(p.tc, p.en, p.et);
+}
+
+inline Coefficients scaled(const UnitCoefficients& u, double meff)
+{
+    return {meff * u.kn, meff * u.cn, meff * u.kt, meff * u.ct};
+}
+
+}  // namespace viscoelastic

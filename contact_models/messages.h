@@ -1,0 +1,69 @@
+// Words for the physics core's results, shared by the LIGGGHTS glue and the
+// tools: the core returns numbers and reasons, this header turns them into
+// the sentences users read. Pure C++, no LIGGGHTS types.
+#pragma once
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+#include "core/exact.h"
+
+namespace viscoelastic {
+
+// printf into a std::string.
+inline std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+inline std::string format(const char* fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    va_list again;
+    va_copy(again, args);
+    const int n = std::vsnprintf(nullptr, 0, fmt, args);
+    va_end(args);
+    std::string s(n > 0 ? n : 0, '\0');
+    if (n > 0) std::vsnprintf(&s[0], s.size() + 1, fmt, again);
+    va_end(again);
+    return s;
+}
+
+// Why exactUnitCoefficients found no coefficients; empty when it did.
+inline std::string failureText(const ExactSolution& s)
+{
+    const ContactParameters& p = s.requested;
+    switch (s.failure) {
+    case ExactFailure::none:
+        return "";
+    case ExactFailure::normalUnreachable:
+        return format("no normal coefficients reach en %g in %g s at dt %g s (tc/dt %.2f)%s; the closest found "
+                      "restitutes %+.3g%% off and lasts %+.3g%% off: use a smaller timestep or exactRestitution off",
+                      p.en, p.tc, s.dt, p.tc / s.dt,
+                      s.limitForce ? " with limitForce on (forbidding attraction bounds the restitution from below)"
+                                   : "",
+                      100.0 * std::expm1(s.closestLnRestitutionError), 100.0 * s.closestDurationError);
+    case ExactFailure::tangentialUnreachable:
+        return format("et %g is below what any tangential dashpot reaches at dt %g s (tc/dt %.2f)", p.et, s.dt,
+                      p.tc / s.dt);
+    }
+    return "";
+}
+
+// A dashpot switched off because the request needed a negative one; empty
+// when none was.
+inline std::string warningText(const ExactSolution& s)
+{
+    const ContactParameters& p = s.requested;
+    std::string w;
+    if (s.undampedRestitution)
+        w = format("en %g at dt %g s (tc/dt %.2f) would need a negative normal dashpot (the undamped discrete "
+                   "contact restitutes %.6f): the dashpot is off",
+                   p.en, s.dt, p.tc / s.dt, *s.undampedRestitution);
+    if (s.undampedTangentialRestitution)
+        w += format("%set %g at dt %g s (tc/dt %.2f) would need a negative tangential dashpot (the undamped "
+                    "sticking contact restitutes %.6f): the tangential dashpot is off",
+                    w.empty() ? "" : "; ", p.et, s.dt, p.tc / s.dt, *s.undampedTangentialRestitution);
+    return w;
+}
+
+}  // namespace viscoelastic

@@ -1,0 +1,129 @@
+"""The benchmarks' own logic (benchmarks/*.py): how runs are classified and summarised, and the
+README built from a results directory. No LIGGGHTS runs here."""
+
+import math
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
+import harness  # noqa: E402
+import common  # noqa: E402
+import multicontact  # noqa: E402
+import peers  # noqa: E402
+import reductions  # noqa: E402
+import run as bench_run  # noqa: E402
+import scaling  # noqa: E402
+import stability  # noqa: E402
+
+NAN = float("nan")
+
+
+class Stability(unittest.TestCase):
+    def test_classify(self):
+        self.assertEqual(stability.classify(False, 0, 2009, NAN, 1e-3), "stopped")
+        self.assertEqual(stability.classify(True, 2008, 2009, 1e-7, 1e-3), "failed")   # a bead left the box
+        self.assertEqual(stability.classify(True, 2009, 2009, 2e-3, 1e-3), "failed")   # energy above the limit
+        self.assertEqual(stability.classify(True, 2009, 2009, 1e-7, 1e-3), "ok")
+        self.assertEqual(stability.classify(True, 16336, 16336, 0.0079, math.inf), "ok")  # no reference energy
+
+    def run_row(self, text, returncode, ke_limit, ke):
+        with tempfile.TemporaryDirectory() as d:
+            (Path(d) / "x.log").write_text(text)
+            return stability.run_row(0.56, 0.3, "viscoelastic", harness.Log(Path(d) / "x.log", returncode), ke_limit, ke)
+
+    def test_row_from_logs(self):
+        row = self.run_row("column: 2009 beads, dt 3e-05 s\nERROR: viscoelastic: timestep 3e-05 s exceeds the stable "
+                           "timestep 2.6e-05 s of type pair (1,1)\n", 1, 1e-3, NAN)
+        self.assertEqual((row["status"], row["guard"], row["beads_kept"], row["beads"]), ("stopped", "error", 0, 2009))
+        row = self.run_row("drum: 16336 beads (target 16336), period 0.006 m\ndrum: done, 16330 beads kept\n", 0, 1.0, 0.01)
+        self.assertEqual((row["status"], row["guard"], row["beads_kept"], row["beads"]), ("failed", "none", 16330, 16336))
+
+    def test_merge_replaces_reruns(self):
+        old = [{"en": 0.3, "dt_over_tc": 0.1, "model": "hooke", "status": "ok"},
+               {"en": "table", "dt_over_tc": 0.3, "model": "hooke", "status": "failed"}]
+        new = [{"en": 0.3, "dt_over_tc": 0.1, "model": "hooke", "status": "failed"},
+               {"en": 0.3, "dt_over_tc": 0.21, "model": "hooke", "status": "ok"}]
+        merged = stability.merge(old, new)
+        self.assertEqual(len(merged), 3)
+        self.assertEqual([r["status"] for r in merged if r["dt_over_tc"] == 0.1], ["failed"])
+
+    def test_summary(self):
+        binary = [{"en": 0.56, "dt_over_tc": f, "restitution_mean": m} for f, m in ((0.4, 0.9), (0.5, 1.01))]
+        column = [{"en": 0.56, "dt_over_tc": f, "model": model, "status": s, "guard": g}
+                  for f, model, s, g in ((0.25, "hooke", "ok", "none"), (0.3, "hooke", "failed", "none"),
+                                         (0.25, "viscoelastic", "ok", "none"), (0.3, "viscoelastic", "stopped", "error"))]
+        drum = [{"en": "table", "dt_over_tc": 0.2, "model": "hooke", "status": "failed"}]
+        limits = {0.56: {"binary_limit_tc": 0.5226, "guard_tc": 0.2613}, 0.46: {"binary_limit_tc": 0.4873, "guard_tc": 0.2436}}
+        (row,) = stability.summary(binary, column, drum, limits, bead_en=0.56, drum_en=0.46)
+        self.assertEqual((row["grow"], row["cfail"], row["dfail"], row["guard_column"]), (0.5, 0.3, 0.2, 0.3))
+        self.assertEqual(row["guard"], "0.2613; drum 0.2436 (bead-drum en 0.46)")
+        self.assertEqual(row["before"], "NO")  # the drum (Table 3.1 runs) failed at 0.2, below its guard 0.2436
+        drum[0]["dt_over_tc"] = 0.3
+        self.assertEqual(stability.summary(binary, column, drum, limits, 0.56, 0.46)[0]["before"], "yes")
+
+
+class Summaries(unittest.TestCase):
+    def test_time_to_rest(self):
+        series = [{"time": t, "ke": k, "rke": 0.0, "zc": 0.05} for t, k in
+                  ((0.1, 1e-2), (0.2, 1e-7), (0.3, 1e-3), (0.4, 1e-7), (0.5, 1e-8))]
+        self.assertEqual(multicontact.summary(series), (1e-2, 0.4, 0.05))
+        series[-1]["ke"] = 1.0  # never at rest: the last time
+        self.assertEqual(multicontact.summary(series)[1], 0.5)
+
+    def test_reduction_sigmas(self):
+        full = {"period_m": 0.024, "Hc_m": -0.107, "Hc_se_m": 3e-4, "Hd_m": 0.0, "Hd_se_m": 4e-4, "angle_deg": 21.0,
+                "angle_se_deg": 0.3, "cpu_s_per_simulated_s": 2700}
+        near = dict(full, period_m=0.012, Hc_m=-0.1075, angle_deg=21.5, cpu_s_per_simulated_s=1350)
+        self.assertAlmostEqual(reductions.sigmas(near, full)[0], -0.0005 / math.hypot(3e-4, 3e-4))
+        self.assertIn("the 12 mm period** (0.50× its cost)", reductions.verdict([near, full], full))
+        far = dict(near, Hc_m=-0.117)
+        self.assertIn("No reduced period stays within 2 σ", reductions.verdict([far, full], full))
+
+    def test_scaling_efficiency(self):
+        rows = [{"ranks": n, "round": r, "loop_seconds": t, "steps": 300, "atoms": 1000, "nlocal_ave": 1000 / n,
+                 "nlocal_max": 1000 / n, "nlocal_min": 1000 / n} for n, r, t in ((1, 1, 8.0), (2, 1, 5.0), (4, 1, 4.0))]
+        table = scaling.per_ranks(rows, cores=2)
+        self.assertEqual([r["efficiency"] for r in table], ["1.00", "0.80", "0.50 (oversubscribed)"])
+
+    def test_yade_rounds(self):
+        out = "x\nyade: round 1, 32672 beads, 300 steps, 29.0 s, 3.38e+05 particle-steps/s, 0 outside the drum\n"
+        self.assertEqual(peers.yade_rounds(out), [(1, 32672, 3.38e5, 0)])
+
+
+class Helpers(unittest.TestCase):
+    def test_last_thermo(self):
+        with tempfile.TemporaryDirectory() as d:
+            (Path(d) / "x.log").write_text("Step Time Atoms KinEng rke CPU\n 0 0 10 1.5 0 0\n 100 0.001 10 2.5 0 1\n"
+                                           "Loop time of 1 on 1 procs for 100 steps with 10 atoms\n"
+                                           "Step Time Atoms KinEng rke CPU\n 100 0.001 10 3.5 0 0\nERROR: lost atoms\n")
+            self.assertEqual(harness.Log(Path(d) / "x.log").thermo()["KinEng"], 3.5)
+
+    def test_formats(self):
+        self.assertEqual((common.sci(1e-4), common.sci(1e-3), common.sci(2.5e-6)), ("1e-4", "1e-3", "2.5e-6"))
+        self.assertEqual(common.fmt_list([0.3, 0.9], " and "), "0.3 and 0.9")
+        self.assertEqual(common.command("x.py", restart="r", append=True, np=None), "benchmarks/x.py --restart r --append")
+
+
+class Readme(unittest.TestCase):
+    def test_from_a_partial_results_dir(self):
+        with tempfile.TemporaryDirectory() as d:
+            d = Path(d)
+            harness.write_csv(d / "model_cost.csv", [{"run": 1, "viscoelastic_s": 9.0, "hooke_s": 10.0, "ratio": 0.9},
+                                                     {"run": 2, "viscoelastic_s": 8.0, "hooke_s": 9.0, "ratio": 0.889}])
+            harness.write_json(d / "model_cost.json", {"beads": 100, "steps": 50, "runs": 2, "ranks": 2, "date": "2026-01-01",
+                                                       "check": "beads 100, max position difference 0 m", "restart": "x.restart"})
+            page = bench_run.readme(common.Results(d, d), harness.generated_note("benchmarks/run.py --readme-only"))
+        self.assertTrue(page.startswith("<!-- Generated by `benchmarks/run.py --readme-only`"))
+        self.assertIn("**Median ratio ours / stock: 0.8944**", page)
+        self.assertIn("Machine: not recorded.", page)
+        for section in ("core", "peers", "yade_collide", "accuracy", "multicontact", "stability", "scaling", "reductions"):
+            self.assertIn(f"Not run yet: `benchmarks/run.py {section}`.", page)
+        self.assertIn("Drum wall: Not run yet: `benchmarks/run.py walls`.", page)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,393 @@
+// collide: validates the viscoelastic contact law in LIGGGHTS against the
+// reference solution of two-body impacts, and is the one tool scripts ask for
+// collision-derived numbers.
+//   collide case        one impact: reference vs LIGGGHTS, as a table
+//   collide sweep-dt    error against tc/dt, with the observed order
+//   collide sweep-angle oblique impacts at increasing incidence (Chung & Ooi 2011, test 4)
+//   collide recurrence  the integrator's recurrence alone: restitution vs dt/tc
+// Material defaults (tc, en, et, mu, bead size and density) come from the
+// `variable` lines of --materials (inputs/materials.in: Table 3.1).
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "gnuplot.h"
+#include "materials.h"
+#include "messages.h"
+#include "runner.h"
+
+using namespace collide;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An option whose default is `scale` times a variable of the materials file.
+struct MaterialOption {
+    CLI::App* command;
+    CLI::Option* option;
+    double* value;
+    std::string variable;
+    double scale;
+};
+
+struct Options {
+    Case c;
+    RunOptions run;
+    std::string geometry = "pair", tangential = "pournin", limitForce = "off", exact = "off";
+    double ratio = 100.0;  // tc / dt
+    double spin = 0.0;     // z spin of sphere 1 [rad/s]
+    int phases = 1;
+    std::string csv, png;
+    std::string materials = "inputs/materials.in";
+    std::vector<MaterialOption> fromMaterials;
+
+    // Sets the material options of the chosen subcommand that the command
+    // line left out from the materials file, which must then exist.
+    void readMaterialDefaults()
+    {
+        std::vector<const MaterialOption*> missing;
+        for (const MaterialOption& m : fromMaterials)
+            if (m.command->parsed() && m.option->count() == 0) missing.push_back(&m);
+        if (missing.empty()) return;
+        if (!fs::exists(materials)) {
+            std::string names;
+            for (const MaterialOption* m : missing) names += (names.empty() ? "" : ", ") + m->option->get_name();
+            throw std::runtime_error("materials file " + materials + " not found: it gives the defaults of " + names +
+                                     " (run from the repository root, pass --materials PATH, or give the values)");
+        }
+        const std::map<std::string, double> values = readMaterials(materials);
+        for (const MaterialOption* m : missing) {
+            const auto it = values.find(m->variable);
+            if (it == values.end())
+                throw std::runtime_error(materials + ": no variable " + m->variable + " (the default of " +
+                                         m->option->get_name() + ")");
+            *m->value = m->scale * it->second;
+        }
+    }
+
+    void finish()
+    {
+        readMaterialDefaults();
+        c.geometry = parseGeometry(geometry);
+        c.tangential = parseTangential(tangential);
+        c.limitForce = limitForce == "on";
+        c.exactRestitution = exact == "on";
+        c.spin1 = Vec3(0, 0, spin);
+        c.dt = c.params.tc / ratio;
+    }
+};
+
+template <class Check>
+void addMaterialOption(CLI::App* app, Options& o, const std::string& flag, double& value, const std::string& variable,
+                       const std::string& help, Check check, double scale = 1.0)
+{
+    std::ostringstream source;
+    if (scale != 1.0) source << scale << " * ";
+    source << variable;
+    CLI::Option* option =
+        app->add_option(flag, value, help + " (default: " + source.str() + " in --materials)")->check(check);
+    o.fromMaterials.push_back({app, option, &value, variable, scale});
+}
+
+// --tc, --en, --limit-force and --materials: what every subcommand takes
+// (`recurrence` takes only these: the normal recurrence needs no et or mu).
+void addContactOptions(CLI::App* app, Options& o)
+{
+    addMaterialOption(app, o, "--tc", o.c.params.tc, "bead_tc", "contact duration [s]", CLI::PositiveNumber);
+    addMaterialOption(app, o, "--en", o.c.params.en, "bead_en", "normal restitution", CLI::Range(1e-6, 1.0));
+    app->add_option("--limit-force", o.limitForce, "forbid attraction: on | off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--materials", o.materials, "LIGGGHTS include with the `variable NAME equal VALUE` defaults")
+        ->capture_default_str();
+}
+
+void addCaseOptions(CLI::App* app, Options& o)
+{
+    app->add_option("--geometry", o.geometry, "pair | wall (primitive plane) | mesh (STL plane)")
+        ->check(CLI::IsMember({"pair", "wall", "mesh"}))->capture_default_str();
+    app->add_option("--tangential", o.tangential, "tangential model: history | pournin")
+        ->check(CLI::IsMember({"history", "pournin"}))->capture_default_str();
+    app->add_option("--exact-restitution", o.exact,
+                    "model setting exactRestitution: coefficients corrected for the timestep: on | off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    addContactOptions(app, o);
+    addMaterialOption(app, o, "--et", o.c.params.et, "bead_et", "tangential restitution", CLI::Range(1e-6, 1.0));
+    addMaterialOption(app, o, "--mu", o.c.params.mu, "bead_mu", "friction coefficient", CLI::NonNegativeNumber);
+    addMaterialOption(app, o, "--r1", o.c.radius1, "bead_d", "radius of sphere 1 [m]", CLI::PositiveNumber, 0.5);
+    addMaterialOption(app, o, "--r2", o.c.radius2, "bead_d", "radius of sphere 2 [m]", CLI::PositiveNumber, 0.5);
+    addMaterialOption(app, o, "--rho1", o.c.density1, "bead_rho", "density of sphere 1 [kg/m^3]", CLI::PositiveNumber);
+    addMaterialOption(app, o, "--rho2", o.c.density2, "bead_rho", "density of sphere 2 [kg/m^3]", CLI::PositiveNumber);
+    app->add_option("--vn", o.c.normalSpeed, "normal approach speed [m/s]")->check(CLI::PositiveNumber)->capture_default_str();
+    app->add_option("--vt", o.c.tangentialSpeed, "tangential speed of 1 relative to 2 [m/s]")->capture_default_str();
+    app->add_option("--spin", o.spin, "spin of sphere 1 about z [rad/s]")->capture_default_str();
+    app->add_option("--liggghts", o.run.liggghts, "liggghts executable")->capture_default_str();
+    app->add_option("--preload", o.run.preload, "library to LD_PRELOAD into a stock liggghts");
+    app->add_option("--np", o.run.ranks, "MPI ranks")->check(CLI::PositiveNumber)->capture_default_str();
+    app->add_option("--workdir", o.run.workdir, "directory for LIGGGHTS inputs and outputs");
+    app->add_option("--csv", o.csv, "write results as CSV");
+}
+
+double relErr(double value, double ref) { return ref != 0.0 ? value / ref - 1.0 : value; }
+
+// LIGGGHTS outcome averaged over `phases` evenly spread contact-start phases
+// (p + 0.5) / phases, all in one run.
+Outcome runAveraged(const Options& o, int phases)
+{
+    const std::vector<double> ph = phases == 1 ? std::vector<double>{o.run.phase} : evenPhases(phases);
+    return meanOutcome(o.c, runLiggghts(o.c, o.run, ph));
+}
+
+std::string describe(const Case& c, bool withVelocity = true, bool withDt = true)
+{
+    std::ostringstream s;
+    s << name(c.geometry) << ", tangential " << name(c.tangential) << ", limitForce "
+      << (c.limitForce ? "on" : "off") << ", tc " << c.params.tc << " s, en " << c.params.en << ", et "
+      << c.params.et << ", mu " << c.params.mu;
+    if (c.exactRestitution) s << ", exactRestitution on";
+    if (withVelocity) s << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed << " m/s";
+    if (withDt) s << ", tc/dt " << c.params.tc / c.dt;
+    return s.str();
+}
+
+int runCase(Options& o)
+{
+    o.finish();
+    const Reference ref = reference(o.c);
+    const std::optional<ClosedForm> cf = closedForm(o.c);
+    const Outcome lig = runAveraged(o, o.phases);
+    const bool oblique = o.c.tangentialSpeed != 0.0 || o.spin != 0.0;
+
+    std::printf("case: %s\nreference: %s%s\n\n", describe(o.c).c_str(), ref.source.c_str(),
+                cf && cf->hasTangential ? (" (closed form regime: " + cf->regime + ")").c_str() : "");
+    std::printf("%-26s %14s %14s %14s %10s\n", "quantity", "closed form", "reference", "LIGGGHTS", "rel. err");
+    auto row = [&](const char* q, double cfv, bool hasCf, double r, double l) {
+        char cfs[32] = "-";
+        if (hasCf) std::snprintf(cfs, sizeof cfs, "%.6g", cfv);
+        std::printf("%-26s %14s %14.6g %14.6g %+9.3f%%\n", q, cfs, r, l, 100.0 * relErr(l, r));
+    };
+    const bool cfN = cf.has_value(), cfT = cf && cf->hasTangential;
+    const Outcome cfo = cf ? cf->outcome : Outcome{};
+    row("restitution", cfo.restitution, cfN, ref.outcome.restitution, lig.restitution);
+    row("duration [s]", cfo.duration, cfN, ref.outcome.duration, lig.duration);
+    row("peak overlap [m]", cfo.peakOverlap, cfN, ref.outcome.peakOverlap, lig.peakOverlap);
+    if (oblique) {
+        row("tangential restitution", cfo.tangentialRestitution, cfT, ref.outcome.tangentialRestitution,
+            lig.tangentialRestitution);
+        row("rebound spin [rad/s]", cfo.spin1, cfT, ref.outcome.spin1, lig.spin1);
+        row("rebound angle [deg]", cfo.reboundAngle, cfT, ref.outcome.reboundAngle, lig.reboundAngle);
+    }
+    std::printf("duration difference: %.2f steps\n", (lig.duration - ref.outcome.duration) / o.c.dt);
+    if (!o.csv.empty()) {
+        std::ofstream f(o.csv);
+        f << "quantity,reference,liggghts\n"
+          << "restitution," << ref.outcome.restitution << "," << lig.restitution << "\n"
+          << "duration," << ref.outcome.duration << "," << lig.duration << "\n"
+          << "peak_overlap," << ref.outcome.peakOverlap << "," << lig.peakOverlap << "\n"
+          << "tangential_restitution," << ref.outcome.tangentialRestitution << "," << lig.tangentialRestitution << "\n"
+          << "rebound_spin," << ref.outcome.spin1 << "," << lig.spin1 << "\n"
+          << "rebound_angle," << ref.outcome.reboundAngle << "," << lig.reboundAngle << "\n";
+    }
+    return 0;
+}
+
+int runSweepDt(Options& o, const std::vector<double>& ratios)
+{
+    o.finish();
+    const Reference ref = reference(o.c);
+    const bool oblique = o.c.tangentialSpeed != 0.0 || o.spin != 0.0;
+    std::printf("case: %s\nreference: %s; LIGGGHTS averaged over %d contact-start phases\n\n",
+                describe(o.c).c_str(), ref.source.c_str(), o.phases);
+    std::printf("%8s %12s %12s %12s %14s %14s\n", "tc/dt", "e", "e err", "e predicted", "duration err",
+                oblique ? "et err" : "");
+    std::ostringstream csv;
+    csv << "tc_over_dt,dt,restitution,restitution_rel_err,predicted_restitution,duration_err_steps,"
+           "duration_rel_err,tangential_restitution,tangential_rel_err\n";
+    std::vector<double> logDt, logErr;
+    for (double ratio : ratios) {
+        o.c.dt = o.c.params.tc / ratio;
+        const Outcome lig = runAveraged(o, o.phases);
+        const double eErr = relErr(lig.restitution, ref.outcome.restitution);
+        const double tErr = relErr(lig.tangentialRestitution, ref.outcome.tangentialRestitution);
+        // the normal recurrence is mass-independent: valid for every geometry;
+        // same start phases as the LIGGGHTS runs
+        viscoelastic::UnitCoefficients u = viscoelastic::pourninUnitCoefficients(o.c.params);
+        if (o.c.exactRestitution) {
+            const viscoelastic::ExactSolution x = viscoelastic::exactUnitCoefficients(o.c.params, o.c.dt, o.c.limitForce);
+            if (!x.ok()) throw std::runtime_error(viscoelastic::failureText(x));
+            u = x.unit;
+        }
+        const double predicted = viscoelastic::sampledCollision(u, o.c.dt, o.c.limitForce, o.phases).restitution;
+        std::printf("%8.1f %12.6f %+11.3f%% %12.6f %+11.2f st", ratio, lig.restitution, 100 * eErr, predicted,
+                    (lig.duration - ref.outcome.duration) / o.c.dt);
+        if (oblique) std::printf(" %+13.3f%%", 100 * tErr);
+        std::printf("\n");
+        csv << ratio << "," << o.c.dt << "," << lig.restitution << "," << eErr << "," << predicted << ","
+            << (lig.duration - ref.outcome.duration) / o.c.dt << ","
+            << relErr(lig.duration, ref.outcome.duration) << "," << lig.tangentialRestitution << "," << tErr
+            << "\n";
+        if (eErr != 0.0) logDt.push_back(std::log(o.c.dt)), logErr.push_back(std::log(std::fabs(eErr)));
+    }
+    // least-squares slope of log|error| against log dt
+    double order = NAN;
+    if (logDt.size() >= 2) {
+        double mx = 0, my = 0;
+        for (size_t i = 0; i < logDt.size(); ++i) mx += logDt[i], my += logErr[i];
+        mx /= logDt.size(), my /= logDt.size();
+        double sxy = 0, sxx = 0;
+        for (size_t i = 0; i < logDt.size(); ++i)
+            sxy += (logDt[i] - mx) * (logErr[i] - my), sxx += (logDt[i] - mx) * (logDt[i] - mx);
+        order = sxy / sxx;
+    }
+    std::printf("observed order of the restitution error: %.2f\n", order);
+    const std::string csvFile = o.csv.empty() ? "sweep_dt.csv" : o.csv;
+    std::ofstream(csvFile) << csv.str();
+    if (!o.png.empty()) {
+        std::ostringstream gp;
+        gp << "set terminal pngcairo size 900,600\nset output '" << o.png << "'\nset datafile separator ','\n"
+           << "set logscale xy\nset xlabel 'tc / dt'\nset ylabel '|relative error|'\nset grid\n"
+           << "set title \"" << describe(o.c, true, false) << "\" font ',9'\nset key top right\n"
+           << "plot '" << csvFile << "' every ::1 using 1:(abs($4)) with linespoints lw 2 title 'restitution (LIGGGHTS)', "
+           << "'' every ::1 using 1:(abs($5/" << ref.outcome.restitution
+           << "-1)) with lines dt 2 title 'restitution (predicted recurrence)', "
+           << "'' every ::1 using 1:(abs($7)) with linespoints lw 2 title 'contact duration'";
+        if (oblique) gp << ", '' every ::1 using 1:(abs($9)) with linespoints lw 2 title 'tangential restitution'";
+        gp << "\n";
+        gnuplot(gp.str());
+        std::printf("chart: %s\n", o.png.c_str());
+    }
+    return 0;
+}
+
+// The case at `speed` [m/s] and `angle` [deg] from the normal.
+Case atIncidence(Case c, double angle, double speed)
+{
+    const double rad = angle * viscoelastic::kPi / 180.0;
+    c.normalSpeed = speed * std::cos(rad);
+    c.tangentialSpeed = speed * std::sin(rad);
+    return c;
+}
+
+int runSweepAngle(Options& o, const std::vector<double>& angles, double speed)
+{
+    o.finish();
+    std::printf("case: %s\nimpact speed %g m/s\n\n", describe(o.c).c_str(), speed);
+    std::printf("%6s %10s %10s %10s %10s %10s %10s %10s %10s\n", "angle", "et ref", "et lig", "spin ref",
+                "spin lig", "rebound ref", "rebound lig", "e ref", "e lig");
+    std::ostringstream csv;
+    csv << "angle,tangential_restitution_ref,tangential_restitution_liggghts,spin_ref,spin_liggghts,"
+           "rebound_angle_ref,rebound_angle_liggghts,restitution_ref,restitution_liggghts,closed_form_regime\n";
+    for (double a : angles) {
+        o.c = atIncidence(o.c, a, speed);
+        const Reference ref = reference(o.c);
+        const std::optional<ClosedForm> cf = closedForm(o.c);
+        const Outcome lig = runAveraged(o, o.phases);
+        std::printf("%6.1f %10.4f %10.4f %10.2f %10.2f %11.3f %11.3f %10.4f %10.4f\n", a,
+                    ref.outcome.tangentialRestitution, lig.tangentialRestitution, ref.outcome.spin1, lig.spin1,
+                    ref.outcome.reboundAngle, lig.reboundAngle, ref.outcome.restitution, lig.restitution);
+        csv << a << "," << ref.outcome.tangentialRestitution << "," << lig.tangentialRestitution << ","
+            << ref.outcome.spin1 << "," << lig.spin1 << "," << ref.outcome.reboundAngle << "," << lig.reboundAngle
+            << "," << ref.outcome.restitution << "," << lig.restitution << ","
+            << (cf && cf->hasTangential ? cf->regime : "none") << "\n";
+    }
+    const std::string csvFile = o.csv.empty() ? "sweep_angle.csv" : o.csv;
+    std::ofstream(csvFile) << csv.str();
+    if (!o.png.empty()) {
+        // the reference is cheap: draw it on a 1 degree grid
+        const std::string fineFile = csvFile + ".reference.csv";
+        std::ofstream fine(fineFile);
+        fine << "angle,tangential_restitution,spin,rebound_angle\n";
+        for (double a = std::max(1.0, angles.front()); a <= std::min(89.0, angles.back()); a += 1.0) {
+            const Outcome r = reference(atIncidence(o.c, a, speed)).outcome;
+            fine << a << "," << r.tangentialRestitution << "," << r.spin1 << "," << r.reboundAngle << "\n";
+        }
+        fine.close();
+        std::ostringstream gp;
+        gp << "set terminal pngcairo size 1500,500\nset output '" << o.png << "'\nset datafile separator ','\n"
+           << "set multiplot layout 1,3 title \"" << describe(o.c, false) << ", |v| = " << speed
+           << " m/s\" font ',10'\nset grid\nset xlabel 'incidence angle from the normal [deg]'\nset key top center\n";
+        const char* panels[][3] = {{"tangential restitution", "2", "3"},
+                                   {"rebound spin [rad/s]", "3", "5"},
+                                   {"rebound angle [deg]", "4", "7"}};
+        for (auto& p : panels)
+            gp << "set ylabel '" << p[0] << "'\nplot '" << fineFile << "' every ::1 using 1:" << p[1]
+               << " with lines lw 2 title 'reference', '" << csvFile << "' every ::1 using 1:" << p[2]
+               << " with points pt 7 ps 1.3 title 'LIGGGHTS'\n";
+        gp << "unset multiplot\n";
+        gnuplot(gp.str());
+        std::printf("chart: %s\n", o.png.c_str());
+    }
+    return 0;
+}
+
+// The integrator's recurrence alone (no LIGGGHTS): restitution averaged over
+// the contact-start phase and its largest single-phase value, against dt/tc,
+// up to and past the stability limit (e > 1: the contact creates energy).
+int runRecurrence(const Options& o, const std::vector<double>& ratios)
+{
+    const viscoelastic::ContactParameters& p = o.c.params;
+    std::printf("dt_over_tc,restitution_mean,restitution_max,duration_steps,stability_limit_dt_over_tc\n");
+    for (double r : ratios) {
+        const double dt = p.tc * r;
+        const viscoelastic::UnitCoefficients u = viscoelastic::pourninUnitCoefficients(p);
+        const viscoelastic::DiscreteCollision mean = viscoelastic::phaseAveragedCollision(u, dt, o.c.limitForce);
+        double emax = 0.0;
+        for (int k = 0; k < 256; ++k)
+            emax = std::max(emax, viscoelastic::discreteCollisionAtPhase(u, dt, o.c.limitForce, (k + 0.5) / 256)
+                                      .outcome.restitution);
+        std::printf("%.4f,%.6f,%.6f,%.3f,%.4f\n", r, mean.restitution, emax, mean.duration / dt,
+                    viscoelastic::criticalTimestep(p.tc, p.en) / p.tc);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"Validate the viscoelastic contact law in LIGGGHTS against two-body impact references"};
+    app.require_subcommand(1);
+    Options o;
+
+    CLI::App* one = app.add_subcommand("case", "one impact: reference vs LIGGGHTS");
+    addCaseOptions(one, o);
+    one->add_option("--ratio", o.ratio, "tc / dt")->check(CLI::PositiveNumber)->capture_default_str();
+    one->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+
+    std::vector<double> ratios{5, 10, 20, 50, 100};
+    CLI::App* dt = app.add_subcommand("sweep-dt", "error against tc/dt and the observed order");
+    addCaseOptions(dt, o);
+    dt->add_option("--ratios", ratios, "tc/dt values")->delimiter(',')->capture_default_str();
+    dt->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+    dt->add_option("--png", o.png, "write the chart as PNG");
+
+    std::vector<double> angles{5, 15, 25, 35, 45, 55, 65, 75, 85};
+    double speed = 1.0;
+    CLI::App* ang = app.add_subcommand("sweep-angle", "oblique impacts, Chung & Ooi (2011) test 4");
+    addCaseOptions(ang, o);
+    ang->add_option("--angles", angles, "incidence angles from the normal [deg]")->delimiter(',')->capture_default_str();
+    ang->add_option("--speed", speed, "impact speed [m/s]")->capture_default_str();
+    ang->add_option("--ratio", o.ratio, "tc / dt")->check(CLI::PositiveNumber)->capture_default_str();
+    ang->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+    ang->add_option("--png", o.png, "write the chart as PNG");
+
+    std::vector<double> fractions{0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
+    CLI::App* rec = app.add_subcommand("recurrence", "the integrator's recurrence only: restitution vs dt/tc, CSV");
+    addContactOptions(rec, o);
+    rec->add_option("--dt-over-tc", fractions, "dt/tc values")->delimiter(',')->capture_default_str();
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*rec) { o.finish(); return runRecurrence(o, fractions); }
+        if (*one) return runCase(o);
+        if (*dt) { o.phases = std::max(o.phases, 1); return runSweepDt(o, ratios); }
+        return runSweepAngle(o, angles, speed);
+    } catch (const std::exception& e) {
+        std::cerr << "collide: " << e.what() << "\n";
+        return 1;
+    }
+}

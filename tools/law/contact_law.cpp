@@ -1,0 +1,199 @@
+// contact_law: every number of the contact law a script needs, from the core
+// (so no script re-derives physics) and from inputs/materials.in (Table 3.1).
+// Type 1 is the beads (mass from bead_d, bead_rho), type 2 the drum (a wall,
+// mass 0). Thesis conventions: bead-bead pairs take bead_*, pairs with the
+// drum take drum_*.
+//
+//   contact_law stock [--materials F] [--uniform EN] [--exact --dt DT [--limit-force]]
+//       `fix property/global` lines of stock hooke/stiffness (absolute_damping
+//       on) with the constants `model viscoelastic` uses: with one mass per
+//       type every contact of a type pair has one meff, so the stock model
+//       computes the same forces. --uniform EN: en = et = EN for every pair.
+//   contact_law limit --en E [--et E2] [--tc T]
+//       CSV: the binary stability limit (Jury) and the run's guard.
+//   contact_law bead-mass [--materials F]
+//       the mass of one bead [kg].
+//   contact_law coefficients [--materials F] [--meff M]
+//       CSV per type pair: tc, en, et, mu and kn, cn, kt, ct per unit meff
+//       (or for the effective mass M).
+#include <CLI/CLI.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/viscoelastic.h"
+#include "materials.h"  // tools/common: the one reader of inputs/materials.in
+#include "messages.h"
+
+namespace {
+
+using namespace viscoelastic;
+
+constexpr int kTypes = 2;  // 1 beads, 2 the drum
+
+// The variables of a materials file, and where they came from.
+class Materials {
+public:
+    explicit Materials(const std::string& path) : path_(path), values_(readMaterials(path)) {}
+    double operator[](const std::string& name) const
+    {
+        const auto it = values_.find(name);
+        if (it == values_.end()) throw std::runtime_error(path_ + ": no variable " + name);
+        return it->second;
+    }
+
+private:
+    std::string path_;
+    std::map<std::string, double> values_;
+};
+
+struct TypePairs {
+    std::array<ContactParameters, kTypes * kTypes> p;  // row by row
+    std::array<double, kTypes> mass;                   // per type [kg]; 0: a wall
+    const ContactParameters& operator()(int i, int j) const { return p[i * kTypes + j]; }
+};
+
+double beadMass(const Materials& m)
+{
+    return 4.0 / 3.0 * kPi * std::pow(0.5 * m["bead_d"], 3) * m["bead_rho"];
+}
+
+// Table 3.1 with the thesis conventions, or en = et = `uniform` everywhere.
+TypePairs typePairs(const Materials& m, std::optional<double> uniform)
+{
+    const ContactParameters bead{m["bead_tc"], m["bead_en"], m["bead_et"], m["bead_mu"]};
+    const ContactParameters drum{m["drum_tc"], m["drum_en"], m["drum_et"], m["drum_mu"]};
+    TypePairs t;
+    for (int i = 0; i < kTypes; ++i)
+        for (int j = 0; j < kTypes; ++j) {
+            ContactParameters p = (i == 0 && j == 0) ? bead : drum;
+            if (uniform) p = {bead.tc, *uniform, *uniform, p.mu};
+            t.p[i * kTypes + j] = p;
+        }
+    t.mass = {beadMass(m), 0.0};
+    return t;
+}
+
+// meff of a type pair; a sphere-wall contact has the sphere's mass (two
+// walls never touch).
+double effectiveMass(double m1, double m2)
+{
+    if (m1 > 0 && m2 > 0) return m1 * m2 / (m1 + m2);
+    return m1 > 0 ? m1 : m2;
+}
+
+int stock(const Materials& m, std::optional<double> uniform, bool exact, double dt, bool limitForce)
+{
+    const TypePairs t = typePairs(m, uniform);
+    std::array<Coefficients, kTypes * kTypes> c;
+    for (int i = 0; i < kTypes; ++i)
+        for (int j = 0; j < kTypes; ++j) {
+            UnitCoefficients u = pourninUnitCoefficients(t(i, j));
+            if (exact) {
+                const ExactSolution s = exactUnitCoefficients(t(i, j), dt, limitForce);
+                if (!s.ok()) {
+                    std::fprintf(stderr, "contact_law: type pair (%d,%d): %s\n", i + 1, j + 1, failureText(s).c_str());
+                    return 1;
+                }
+                u = s.unit;
+            }
+            c[i * kTypes + j] = scaled(u, effectiveMass(t.mass[i], t.mass[j]));
+        }
+    auto print = [&](const char* name, double Coefficients::*field) {
+        std::printf("fix %s all property/global %s peratomtypepair %d", name, name, kTypes);
+        for (const Coefficients& k : c) std::printf(" %.17g", k.*field);
+        std::printf("\n");
+    };
+    print("kn", &Coefficients::kn);
+    print("kt", &Coefficients::kt);
+    print("gamman_abs", &Coefficients::cn);
+    print("gammat_abs", &Coefficients::ct);
+    return 0;
+}
+
+int limit(double tc, double en, double et)
+{
+    const double binary = criticalTimestep(ContactParameters{tc, en, et, 0.0});
+    const double guard = kMultiContactFactor * binary;
+    std::printf("tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc\n");
+    std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", tc, en, et, binary, guard, binary / tc, guard / tc);
+    return 0;
+}
+
+int coefficients(const Materials& m, std::optional<double> meff)
+{
+    const TypePairs t = typePairs(m, std::nullopt);
+    std::printf("i,j,tc_s,en,et,mu,%s\n", meff ? "kn_N_m,cn_N_s_m,kt_N_m,ct_N_s_m"
+                                             : "kn_per_meff_1_s2,cn_per_meff_1_s,kt_per_meff_1_s2,ct_per_meff_1_s");
+    for (int i = 0; i < kTypes; ++i)
+        for (int j = i; j < kTypes; ++j) {
+            const ContactParameters& p = t(i, j);
+            const Coefficients c = scaled(pourninUnitCoefficients(p), meff ? *meff : 1.0);
+            std::printf("%d,%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", i + 1, j + 1, p.tc, p.en, p.et,
+                        p.mu, c.kn, c.cn, c.kt, c.ct);
+        }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"Numbers of the viscoelastic contact law (Pournin coefficients, Table 3.1)"};
+    app.require_subcommand(1);
+    std::string path = "inputs/materials.in";
+    auto addMaterials = [&](CLI::App* sub) {
+        sub->add_option("--materials", path, "LIGGGHTS file of `variable NAME equal VALUE` lines")
+            ->capture_default_str();
+    };
+
+    CLI::App* stockCmd = app.add_subcommand("stock", "stock hooke/stiffness properties with our constants");
+    addMaterials(stockCmd);
+    double uniform = 0.0, dt = 0.0;
+    bool exact = false, limitForce = false;
+    CLI::Option* uniformOpt =
+        stockCmd->add_option("--uniform", uniform, "en = et = EN for every type pair")->check(CLI::Range(1e-300, 1.0));
+    CLI::Option* dtOpt = stockCmd->add_option("--dt", dt, "timestep [s]")->check(CLI::PositiveNumber);
+    CLI::Option* exactOpt = stockCmd->add_flag("--exact", exact, "the exactRestitution coefficients")->needs(dtOpt);
+    stockCmd->add_flag("--limit-force", limitForce, "limitForce on")->needs(exactOpt);
+
+    CLI::App* limitCmd = app.add_subcommand("limit", "binary stability limit and guard, CSV");
+    addMaterials(limitCmd);
+    double en = 0.0, et = 0.0, tc = 0.0;
+    limitCmd->add_option("--en", en, "normal restitution")->required()->check(CLI::Range(1e-300, 1.0));
+    CLI::Option* etOpt = limitCmd->add_option("--et", et, "tangential restitution (default: en)")
+                             ->check(CLI::Range(1e-300, 1.0));
+    CLI::Option* tcOpt = limitCmd->add_option("--tc", tc, "contact duration [s] (default: bead_tc)")
+                             ->check(CLI::PositiveNumber);
+
+    CLI::App* massCmd = app.add_subcommand("bead-mass", "mass of one bead [kg]");
+    addMaterials(massCmd);
+
+    CLI::App* coeffCmd = app.add_subcommand("coefficients", "kn, cn, kt, ct per type pair, CSV");
+    addMaterials(coeffCmd);
+    double meff = 0.0;
+    CLI::Option* meffOpt = coeffCmd->add_option("--meff", meff, "effective mass [kg]: absolute constants")
+                               ->check(CLI::PositiveNumber);
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*stockCmd)
+            return stock(Materials(path), *uniformOpt ? std::optional<double>(uniform) : std::nullopt,
+                         exact, dt, limitForce);
+        if (*limitCmd)
+            return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en);
+        if (*massCmd) {
+            std::printf("%.17g\n", beadMass(Materials(path)));
+            return 0;
+        }
+        return coefficients(Materials(path), *meffOpt ? std::optional<double>(meff) : std::nullopt);
+    } catch (const std::runtime_error& e) {
+        std::fprintf(stderr, "contact_law: %s\n", e.what());
+        return 2;
+    }
+}
