@@ -119,10 +119,11 @@ def materials(path=None):
 
 
 def options(doc, **defaults):
-    """argparse from a driver's docstring (first line: description; the rest: epilog), with the
-    common options a driver asks for: np, out, rounds, restart (pass their defaults)."""
-    first, _, rest = (doc or "").strip().partition("\n")
-    p = argparse.ArgumentParser(description=first, epilog=rest, formatter_class=argparse.RawDescriptionHelpFormatter)
+    """argparse from a driver's docstring (first paragraph: description; the rest: epilog), with
+    the common options a driver asks for: np, out, rounds, restart (pass their defaults)."""
+    first, _, rest = (doc or "").strip().partition("\n\n")
+    p = argparse.ArgumentParser(description=" ".join(first.split()), epilog=rest,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
     common = {
         "np": (int, "MPI ranks"),
         "out": (Path, "where the results go"),
