@@ -8,14 +8,20 @@
 # Writes tc_over_dt, restitution (mean, min, max) and contact duration in steps.
 import math
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(sys.argv[0]).resolve().parents[2] / "tools"))  # yade -x: argv[0] is this script
+from harness.core import materials  # noqa: E402  (inputs/materials.in: Table 3.1)
+
+M = materials()
 
 args = sys.argv[1:]
 out = args[0]
 kv = dict(a.split("=", 1) for a in args[1:])
 ratios = [float(r) for r in kv.get("ratios", "5,10,20,40,81").split(",")]
 phases = int(kv.get("phases", "128"))
-tc, en, et, mu = 1e-4, 0.56, 0.46, 0.5
-r, rho, vn = 0.0015, 2500.0, 1.0  # as collide's defaults
+tc, en, et, mu = M["bead_tc"], M["bead_en"], M["bead_et"], M["bead_mu"]
+r, rho, vn = M["bead_d"] / 2, M["bead_rho"], 1.0  # as collide's defaults
 
 
 def run(ratio):

@@ -17,6 +17,12 @@ import math
 import subprocess
 import sys
 import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(sys.argv[0]).resolve().parents[2] / "tools"))  # yade -x: argv[0] is this script
+from harness.core import materials  # noqa: E402  (inputs/materials.in: Table 3.1)
+
+M = materials()
 
 args = sys.argv[1:]
 kv = dict(a.split("=", 1) for a in args[1:])
@@ -24,13 +30,15 @@ period = float(kv.get("period", "0.012"))
 steps = int(kv.get("steps", "500"))
 rpm = float(kv.get("rpm", "21"))
 dt = float(kv.get("dt", "1e-5"))
-R, segments, c = 0.225, 180, 0.5  # drum radius, facets around, drum axis at y = z = c
+R, segments, c = M["drum_R"], 180, 0.5  # drum radius, facets around, drum axis at y = z = c
 
 O.periodic = True
 O.cell.setBox(period, 2 * c, 2 * c)
 # Table 3.1; YADE averages tc, en, et of the two materials and takes the smaller friction angle
-glass = O.materials.append(ViscElMat(tc=1e-4, en=0.56, et=0.46, frictionAngle=math.atan(0.5), density=2500))
-steel = O.materials.append(ViscElMat(tc=1e-4, en=0.46, et=0.46, frictionAngle=math.atan(0.95), density=2500))
+glass = O.materials.append(ViscElMat(tc=M["bead_tc"], en=M["bead_en"], et=M["bead_et"],
+                                     frictionAngle=math.atan(M["bead_mu"]), density=M["bead_rho"]))
+steel = O.materials.append(ViscElMat(tc=M["drum_tc"], en=M["drum_en"], et=M["drum_et"],
+                                     frictionAngle=math.atan(M["drum_mu"]), density=M["bead_rho"]))
 
 pieces = 3
 drum = []
