@@ -80,4 +80,18 @@ inline Coefficients scaled(const UnitCoefficients& u, double meff)
     return {meff * u.kn, meff * u.cn, meff * u.kt, meff * u.ct};
 }
 
+// Mass of a solid sphere of diameter d and density rho [kg].
+inline double sphereMass(double d, double rho)
+{
+    return kPi / 6.0 * d * d * d * rho;
+}
+
+// meff = m1 m2 / (m1 + m2) of a contact; a wall (mass 0) contributes no
+// inertia, so a sphere-wall contact has the sphere's mass.
+inline double effectiveMass(double m1, double m2)
+{
+    if (m1 > 0 && m2 > 0) return m1 * m2 / (m1 + m2);
+    return m1 > 0 ? m1 : m2;
+}
+
 }  // namespace viscoelastic

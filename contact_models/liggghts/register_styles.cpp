@@ -39,27 +39,30 @@ Walls::IGranularWall* createWall(LAMMPS_NS::LAMMPS* lmp, LAMMPS_NS::FixWallGran*
     return new Walls::Granular<ContactModel<Style<T> > >(lmp, parent, hash);
 }
 
-// One supported combination: `model viscoelastic tangential <name>`.
+// One supported combination: `model viscoelastic tangential <name>`. `own`:
+// the tangential model is this library's (libliggghts must learn its name).
 struct Combination {
     const char* tangentialName;
+    int tangential;
+    bool own;
     int64_t hash;
     PairStyles::IGranularPairStyle* (*pair)(LAMMPS_NS::LAMMPS*, LAMMPS_NS::PairGran*, int64_t);
     Walls::IGranularWall* (*wall)(LAMMPS_NS::LAMMPS*, LAMMPS_NS::FixWallGran*, int64_t);
 };
 
 template<int T>
-constexpr Combination combination(const char* tangentialName)
+constexpr Combination combination(const char* tangentialName, bool own = false)
 {
-    return {tangentialName, Style<T>::HASHCODE, &createPair<T>, &createWall<T>};
+    return {tangentialName, T, own, Style<T>::HASHCODE, &createPair<T>, &createWall<T>};
 }
 
 // What this build supports: `model viscoelastic` with one of these
 // tangential models (cohesion off, rolling_friction off, surface default).
-// The factories, the check and the ERROR listing them all come from here:
-// adding a combination is one line.
+// The model names, the factories, the check and the ERROR listing them all
+// come from here: adding a combination is one line.
 constexpr Combination kSupported[] = {
     combination<TANGENTIAL_HISTORY>("history"),
-    combination<TANGENTIAL_POURNIN>("pournin"),
+    combination<TANGENTIAL_POURNIN>("pournin", true),
     combination<TANGENTIAL_NO_HISTORY>("no_history"),
 };
 
@@ -67,6 +70,13 @@ bool isSupported(int64_t hash)
 {
     for (const Combination& c : kSupported)
         if (hash == c.hash) return true;
+    return false;
+}
+
+bool isOwnTangential(int t)
+{
+    for (const Combination& c : kSupported)
+        if (c.own && c.tangential == t) return true;
     return false;
 }
 
@@ -127,7 +137,8 @@ struct Registrar {
     {
         ContactModels::Factory& models = ContactModels::Factory::instance();
         models.addNormalModel("viscoelastic", VISCOELASTIC);
-        models.addTangentialModel("pournin", TANGENTIAL_POURNIN);
+        for (const Combination& c : kSupported)
+            if (c.own) models.addTangentialModel(c.tangentialName, c.tangential);
 
         PairStyles::Factory& pairs = PairStyles::Factory::instance();
         Walls::Factory& walls = Walls::Factory::instance();
@@ -139,7 +150,7 @@ struct Registrar {
         // every other combination naming one of our models stops with the list above
         for (int n : ids("normal"))
             for (int t : ids("tangential")) {
-                if (n != VISCOELASTIC && t != TANGENTIAL_POURNIN) continue;
+                if (n != VISCOELASTIC && !isOwnTangential(t)) continue;
                 for (int c : ids("cohesion"))
                     for (int r : ids("rolling"))
                         for (int s : ids("surface")) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -84,6 +85,35 @@ Csv readCsv(const fs::path& file)
         else csv.rows.push_back(cells);
     }
     return csv;
+}
+
+// The thermo rows of the last `run` in a log, by column name.
+std::vector<std::map<std::string, double>> lastThermo(const std::string& out)
+{
+    std::vector<std::map<std::string, double>> rows;
+    std::vector<std::string> header;
+    std::stringstream ss(out);
+    for (std::string line; std::getline(ss, line);) {
+        std::stringstream ls(line);
+        std::vector<std::string> w;
+        for (std::string x; ls >> x;) w.push_back(x);
+        if (!w.empty() && w[0] == "Step") {
+            header = w;
+            rows.clear();
+        } else if (!header.empty() && w.size() == header.size()) {
+            std::map<std::string, double> row;
+            try {
+                for (size_t i = 0; i < w.size(); ++i) row[header[i]] = std::stod(w[i]);
+            } catch (const std::exception&) {
+                header.clear();
+                continue;
+            }
+            rows.push_back(row);
+        } else if (line.rfind("Loop time", 0) == 0) {
+            header.clear();
+        }
+    }
+    return rows;
 }
 
 }  // namespace
@@ -238,6 +268,23 @@ TEST_F(SmallDrum, ParaViewRendersANonBlankPicture)
     EXPECT_GT(notWhite, px->GetNumberOfTuples() / 40);
 }
 
+// Progress: every thermo row shows the percent of the run's steps done
+// (`pct_done`) and LIGGGHTS' estimate of the seconds left (`CPULeft`, thermo
+// keyword cpuremain: the loop's time per step so far x steps left). The run's thermo rows fall every 0.01 s of 0.03 s:
+// 0, 33.3, 66.7, 100 % exactly (the percent counts this run's steps), and
+// nothing is left after the last step.
+TEST_F(SmallDrum, ThermoShowsPercentDoneAndTimeLeft)
+{
+    ASSERT_EQ(run.status, 0);
+    const auto rows = lastThermo(run.output);
+    ASSERT_EQ(rows.size(), 4u) << run.output;
+    ASSERT_TRUE(rows[0].count("pct_done") && rows[0].count("CPULeft")) << run.output;
+    for (size_t i = 0; i < rows.size(); ++i)
+        EXPECT_NEAR(rows[i].at("pct_done"), 100.0 * i / 3, 1e-5) << "row " << i;
+    EXPECT_GT(rows[1].at("CPULeft"), 0.0);
+    EXPECT_EQ(rows.back().at("CPULeft"), 0.0);
+}
+
 // "Nothing lost": a run whose bead count changed must fail loudly. Beads are
 // removed by a line inserted into a copy of the input.
 TEST(DrumInput, LostBeadsFailTheRun)
@@ -261,7 +308,7 @@ TEST(DrumInput, UnknownChoiceIsNamed)
     const fs::path dir = freshDir("drum_choice");
     const Result r = shell(std::string(LIGGGHTS_LAUNCHER) + " -in inputs/drum.in -var wall spinning -var fill 0.05", dir);
     EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp)\nERROR: Label wasn't found"),
+    EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp | cylinder)\nERROR: Label wasn't found"),
               std::string::npos) << r.output;
 }
 
@@ -299,6 +346,12 @@ TEST_F(SmallDrum, RestartWithAnotherMeshReadsThatMesh)
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("mesh drum90 containing 180 triangle(s)"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("drum_L6_N90.stl) is required, but data will be taken from restart"), std::string::npos);
+    // progress counts this run's steps, not the restart's step number
+    const auto rows = lastThermo(r.output);
+    ASSERT_GE(rows.size(), 2u) << r.output;
+    EXPECT_GT(rows.front().at("Step"), 0);
+    EXPECT_EQ(rows.front().at("pct_done"), 0.0);
+    EXPECT_NEAR(rows.back().at("pct_done"), 100.0, 1e-9);
 }
 
 // The benchmarks time our model against stock hooke/stiffness fed the same

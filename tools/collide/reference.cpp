@@ -33,14 +33,9 @@ std::string name(Geometry g)
 
 std::string name(Tangential t) { return t == Tangential::History ? "history" : "pournin"; }
 
-static double sphereMass(double r, double rho) { return 4.0 / 3.0 * kPi * r * r * r * rho; }
-
-double Case::mass1() const { return sphereMass(radius1, density1); }
-double Case::mass2() const { return isWall() ? 0.0 : sphereMass(radius2, density2); }
-double Case::effectiveMass() const
-{
-    return isWall() ? mass1() : mass1() * mass2() / (mass1() + mass2());
-}
+double Case::mass1() const { return viscoelastic::sphereMass(2.0 * radius1, density1); }
+double Case::mass2() const { return isWall() ? 0.0 : viscoelastic::sphereMass(2.0 * radius2, density2); }
+double Case::effectiveMass() const { return viscoelastic::effectiveMass(mass1(), mass2()); }
 
 ContactKinematics kinematics(const Case& c, const BodyStates& s)
 {
@@ -290,7 +285,7 @@ std::optional<ClosedForm> closedForm(const Case& c)
         cf.regime = "sliding";
         cf.outcome.tangentialRestitution = -(u0 - du) / u0;
         cf.outcome.spin1 = c.spin1.z() + zSign * 2.5 * mu * frictionImpulse / R;
-    } else if (!c.limitForce && 2.0 / 7.0 * u0 / v0 <= mu) {
+    } else if (!c.limitForce && viscoelastic::kTangentialMassRatio * u0 / v0 <= mu) {
         // Identical oscillators: Ft/Fn stays (2/7) u0/v0, so it sticks throughout.
         cf.regime = "sticking";
         cf.outcome.tangentialRestitution = c.params.et;

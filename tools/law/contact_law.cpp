@@ -60,7 +60,7 @@ struct TypePairs {
 
 double beadMass(const Materials& m)
 {
-    return 4.0 / 3.0 * kPi * std::pow(0.5 * m["bead_d"], 3) * m["bead_rho"];
+    return sphereMass(m["bead_d"], m["bead_rho"]);
 }
 
 // Table 3.1 with the thesis conventions, or en = et = `uniform` everywhere.
@@ -77,14 +77,6 @@ TypePairs typePairs(const Materials& m, std::optional<double> uniform)
         }
     t.mass = {beadMass(m), 0.0};
     return t;
-}
-
-// meff of a type pair; a sphere-wall contact has the sphere's mass (two
-// walls never touch).
-double effectiveMass(double m1, double m2)
-{
-    if (m1 > 0 && m2 > 0) return m1 * m2 / (m1 + m2);
-    return m1 > 0 ? m1 : m2;
 }
 
 int stock(const Materials& m, std::optional<double> uniform, bool exact, double dt, bool limitForce)
