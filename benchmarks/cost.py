@@ -91,7 +91,8 @@ def section(res, m, rows):
         + harness.markdown(rows, [("run", lambda r: int(r["run"]), None), ("viscoelastic [s]", "viscoelastic_s", "{:g}"),
                                   ("hooke/stiffness [s]", "hooke_s", "{:g}"),
                                   ("ratio", lambda r: r["viscoelastic_s"] / r["hooke_s"], "{:.4f}")])
-        + f"\n**Median ratio ours / stock: {harness.median_ratio(ours, stock):.4f}** (medians {mo:g} s and {ms:g} s;\n"
+        + f"\n**Median ratio ours / stock: {harness.median_ratio(ours, stock):.4f}** (per round "
+        f"{'–'.join(f'{x:.2f}' for x in harness.spread([o / t for o, t in zip(ours, stock)]))}; medians {mo:g} s and {ms:g} s;\n"
         f"{psps(mo)} and {psps(ms)} particle-steps per second).\n\n"
         + common.sh(common.command("cost.py", restart=m["restart"], steps=m["steps"], rounds=m["runs"], np=m["ranks"])))
 

@@ -13,6 +13,7 @@
 # one YADE process serves all rounds. YADE's periodic collider
 # needs bodies under half the period: 3 mm beads need a period above 6 mm,
 # and the drum facets are cut along the axis into pieces of at most period/3.
+import csv
 import math
 import subprocess
 import sys
@@ -53,12 +54,11 @@ for k in range(segments):
 # one append of the whole list: appending bodies one by one is quadratic here
 beads = []
 with open(args[0]) as f:
-    next(f)
-    for line in f:
-        r, x, y, z, vx, vy, vz, wx, wy, wz = map(float, line.split(","))
-        b = sphere((x, y + c, z + c), r, material=glass)
-        b.state.vel = Vector3(vx, vy, vz)
-        b.state.angVel = Vector3(wx, wy, wz)
+    for row in csv.DictReader(f):  # columns of vtp_to_csv.py, by name
+        q = {k: float(v) for k, v in row.items()}
+        b = sphere((q["x"], q["y"] + c, q["z"] + c), q["r"], material=glass)
+        b.state.vel = Vector3(q["vx"], q["vy"], q["vz"])
+        b.state.angVel = Vector3(q["wx"], q["wy"], q["wz"])
         beads.append(b)
 O.bodies.append(beads)
 n = len(beads)
@@ -70,7 +70,7 @@ O.engines = [
                     [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]),
     RotationEngine(rotationAxis=(1, 0, 0), rotateAroundZero=True, zeroPoint=(0, c, c),
                    angularVelocity=2 * math.pi * rpm / 60, ids=drum),
-    NewtonIntegrator(damping=0, gravity=(0, 0, -9.81)),
+    NewtonIntegrator(damping=0, gravity=(0, 0, -M["gravity"])),
 ]
 O.dt = dt
 O.run(20, True)  # first steps build the collider's lists

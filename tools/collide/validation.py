@@ -143,13 +143,13 @@ def main():
 LIGGGHTS {harness.machine()["liggghts"]} with `model viscoelastic`;
 tc = {m["bead_tc"]:g} s, glass beads {1e3 * m["bead_d"]:g} mm, {m["bead_rho"]:g} kg/m^3, impact speed 1 m/s unless stated.
 
-## Head-on impacts (en = 0.56, averaged over 128 contact-start phases)
+## Head-on impacts (en = {m["bead_en"]:g}, averaged over 128 contact-start phases)
 
 Reference: closed form (en, or Schwager & Poeschel 2007 with limitForce on; duration tc or
 the overlap-closing time). Duration error in steps.
 
 {rows}
-## Head-on impacts with exactRestitution on (en = 0.56, 128 phases)
+## Head-on impacts with exactRestitution on (en = {m["bead_en"]:g}, 128 phases)
 
 Reference: the requested en and tc. The 128-phase mean differs from the mean over all phases by
 at most (jump of e over the phase)/256: 0.05 % of en at tc/10, 0.09 % at tc/5.
@@ -175,7 +175,7 @@ Sticking: vt/vn = 0.2; sliding: vt/vn = 4 (Walton's regime).
 ![pair](convergence_pair.png)
 ![wall, limitForce on](convergence_wall_limitforce.png)
 
-## Oblique impacts on a wall against incidence angle (Table 3.1 beads: en 0.56, et 0.46, mu 0.5, tc/100)
+## Oblique impacts on a wall against incidence angle (Table 3.1 beads: en {m["bead_en"]:g}, et {m["bead_et"]:g}, mu {m["bead_mu"]:g}, tc/100)
 
 ![pournin](angles_wall_pournin.png)
 ![history](angles_wall_history.png)

@@ -4,19 +4,32 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
+
+#include "materials.h"
 
 int main(int argc, char** argv)
 {
     CLI::App app{"Write a drum shell (cylinder about x) as ASCII STL"};
-    double diameter = 0.45, length = 0.024, x0 = 0.0;
+    double diameter = 0.0, length = 0.024, x0 = 0.0;
     int segments = 360;
-    std::string out = "drum.stl";
-    app.add_option("--diameter", diameter, "inner diameter [m]")->check(CLI::PositiveNumber)->capture_default_str();
+    std::string out = "drum.stl", materials = "inputs/materials.in";
+    app.add_option("--diameter", diameter, "inner diameter [m] (default: 2 drum_R of --materials)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--materials", materials, "Table 3.1 and the scene's constants")->capture_default_str();
     app.add_option("--length", length, "axial length [m]")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--x0", x0, "axial start [m]")->capture_default_str();
     app.add_option("--segments", segments, "facets around the circumference")->check(CLI::Range(3, 100000))->capture_default_str();
     app.add_option("-o,--output", out, "output file")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
+    if (diameter <= 0.0) try {
+            const auto m = readMaterials(materials);
+            if (!m.count("drum_R")) throw std::runtime_error(materials + ": no variable drum_R");
+            diameter = 2.0 * m.at("drum_R");
+        } catch (const std::exception& e) {
+            std::cerr << "drum_mesh: " << e.what() << " (or give --diameter)\n";
+            return 2;
+        }
 
     const double r = 0.5 * diameter, pi = std::acos(-1.0);
     std::ofstream f(out);

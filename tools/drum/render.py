@@ -22,10 +22,10 @@ pattern = re.compile(re.escape(os.path.basename(args.prefix)) + r"_(\d+)\.vtp$")
 steps = sorted(int(m.group(1)) for f in glob.glob(args.prefix + "_*.vtp")
                for m in [pattern.search(os.path.basename(f))] if m)
 if not steps:
-    sys.exit("render_drum: no files %s_<step>.vtp" % args.prefix)
+    sys.exit("render: no files %s_<step>.vtp" % args.prefix)
 step = args.step if args.step is not None else steps[-1]
 if step not in steps:
-    sys.exit("render_drum: no step %d; available: %s" % (step, steps))
+    sys.exit("render: no step %d; available: %s" % (step, steps))
 
 view = GetActiveViewOrCreate("RenderView")
 view.ViewSize = [args.size, args.size]
@@ -66,4 +66,4 @@ view.ResetCamera()
 Render(view)
 out = args.out or args.prefix + ".png"
 SaveScreenshot(out, view, ImageResolution=[args.size, args.size])
-print("render_drum: wrote %s (step %d)" % (out, step))
+print("render: wrote %s (step %d)" % (out, step))
