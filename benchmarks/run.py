@@ -27,6 +27,7 @@ import common  # noqa: E402
 import accuracy  # noqa: E402
 import core  # noqa: E402
 import cost  # noqa: E402
+import full_scene  # noqa: E402
 import multicontact  # noqa: E402
 import peers  # noqa: E402
 import reductions  # noqa: E402
@@ -51,6 +52,7 @@ def settings(restart):
         "walls": (walls, [["--restart", slab]]),
         "yade_collide": (yade_collide, [[]]),
         "peers": (peers, [["--steps", "300", "--rounds", "5"]]),
+        "full_scene": (full_scene, [["--restart", str(harness.post("settle24/L24_21rpm.restart"))]]),
         "scaling": (scaling, [["--restart", str(harness.post("reduce/drum_L24.restart")), "--period", "0.024",
                                "--ranks", "1,2", "--rounds", "5", "--time", "0.003"]]),
     }
@@ -66,6 +68,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
         ("## 4. Stability map", [stability]),
         ("## 5. Scaling: the full drum", [scaling]),
+        ("### Speed of the full scene: decomposition, wall, skin, stock", [full_scene]),
         ("## 6. Scene reductions", [reductions, walls]))
 
 

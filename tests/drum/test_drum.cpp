@@ -51,7 +51,7 @@ fs::path freshDir(const std::string& tag)
 }
 
 const std::string kMpirun = "mpirun --allow-run-as-root --oversubscribe -np 2 ";
-const std::string kSmall = " -var fill 0.10 -var time 0.03 -var dumpdt 0.01 -var name small";
+const std::string kSmall = " -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.03 -var dumpdt 0.01 -var name small";
 
 int beadsPrinted(const std::string& out, const std::string& pattern)
 {
@@ -298,7 +298,7 @@ TEST(DrumInput, LostBeadsFailTheRun)
         "\nregion hole block INF INF INF INF INF -0.2 units box\ndelete_atoms region hole\nrun ${steps}");
     ASSERT_NE(broken, ss.str());
     std::ofstream(dir / "broken.in") << broken;
-    const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER + " -in broken.in -var fill 0.10 -var time 0.001 -var name lost", dir);
+    const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER + " -in broken.in -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.001 -var name lost", dir);
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("beads escaped"), std::string::npos) << r.output;
 }
@@ -306,7 +306,7 @@ TEST(DrumInput, LostBeadsFailTheRun)
 TEST(DrumInput, UnknownChoiceIsNamed)
 {
     const fs::path dir = freshDir("drum_choice");
-    const Result r = shell(std::string(LIGGGHTS_LAUNCHER) + " -in inputs/drum.in -var wall spinning -var fill 0.05", dir);
+    const Result r = shell(std::string(LIGGGHTS_LAUNCHER) + " -in inputs/drum.in -var wall spinning -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.05", dir);
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp | cylinder)\nERROR: Label wasn't found"),
               std::string::npos) << r.output;
@@ -318,7 +318,7 @@ TEST(DrumInput, RampRaisesTheSpeedLinearly)
 {
     const fs::path dir = freshDir("drum_ramp");
     const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER +
-                               " -in inputs/drum.in -var fill 0.05 -var time 0.01 -var wall ramp -var rpm 21 -var rpm_end 28 -var name ramp",
+                               " -in inputs/drum.in -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.05 -var time 0.01 -var wall ramp -var rpm 21 -var rpm_end 28 -var name ramp",
                            dir);
     ASSERT_EQ(r.status, 0) << r.output;
     std::ifstream f(dir / "post/ramp_run.csv");
@@ -340,7 +340,7 @@ TEST_F(SmallDrum, RestartWithAnotherMeshReadsThatMesh)
 {
     ASSERT_EQ(run.status, 0);
     const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER +
-                               " -in inputs/drum.in -var fill 0.10 -var time 0.001 -var segments 90"
+                               " -in inputs/drum.in -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.001 -var segments 90"
                                " -var start restart -var restart post/small.restart -var name small90",
                            dir);
     ASSERT_EQ(r.status, 0) << r.output;
@@ -369,7 +369,7 @@ TEST_F(SmallDrum, StockHookeWithTheSameConstantsMovesTheBedIdentically)
         std::ofstream(dir / file) << r.output;
     }
     const std::string cont = kMpirun + LIGGGHTS_LAUNCHER +
-                             " -in inputs/drum.in -var fill 0.10 -var time 0.002 -var dumpdt 0.002"
+                             " -in inputs/drum.in -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.002 -var dumpdt 0.002"
                              " -var start restart -var restart post/small.restart";
     for (const char* r : {" -var name ours", " -var name stock -var model hooke -var stock stock.in",
                           " -var name other -var model hooke -var stock other.in"}) {
@@ -385,3 +385,20 @@ TEST_F(SmallDrum, StockHookeWithTheSameConstantsMovesTheBedIdentically)
     EXPECT_LE(same_.velocity, 1e-9);
     EXPECT_GT(drum::compare(ours, last("other")).velocity, 1e-6);
 }
+
+// The main job as the README runs it (mpirun -np 2 liggghts -in inputs/drum.in), a few steps:
+// the thesis scene from the shipped settled state, with the recommended settings, raises no
+// WARNING (no accuracy warning, no restart grid warning), keeps every bead and splits them
+// evenly between the two ranks.
+TEST(MainJob, DefaultSettingsRaiseNoWarning)
+{
+    const fs::path dir = freshDir("main_job");
+    const Result r = shell(kMpirun + LIGGGHTS_LAUNCHER + " -in inputs/drum.in -var time 0.0004 -var name main", dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("WARNING"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("drum: start settled"), std::string::npos);
+    EXPECT_NE(r.output.find("exactRestitution on"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("drum: done, 65344 beads kept"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Nlocal:    32672 ave 32672 max 32672 min"), std::string::npos) << r.output;
+}
+

@@ -1,5 +1,5 @@
 // End-to-end tests of inputs/drum.in's decomposition and wall options:
-//  - DrumBalance: `-var balance on` moves the y cut of `processors 1 * 1` to
+//  - DrumBalance: `-var balance on` moves the y cut of `processors * * 1` to
 //    the beads' median (beads per rank equal) without changing the physics;
 //  - DrumCylinder: `-var wall cylinder`, the drum as LIGGGHTS' primitive
 //    xcylinder with `shear y omega`: a single bead at the bottom of the drum
@@ -125,11 +125,11 @@ protected:
                      "\nlabel setup\n");
         // the control: the balance without write_restart's copy of the contact history
         writeVariant(dir / "stale.in", "\nwrite_restart   /dev/null\n", "\n");
-        tilt = shell(kMpirun2 + LIGGGHTS_LAUNCHER + kPinned + " -in tilted.in -var fill 0.05 -var time 0.02 -var dumpdt 0.02 -var name tilt",
+        tilt = shell(kMpirun2 + LIGGGHTS_LAUNCHER + kPinned + " -in tilted.in -var balance off -var fill 0.05 -var time 0.02 -var dumpdt 0.02 -var name tilt",
                      dir, "tilt.out");
         const std::string cont = kMpirun2 + LIGGGHTS_LAUNCHER + kPinned +
                                  " -var start restart -var restart post/tilt.restart -var time 0.002 -var dumpdt 0.001";
-        off = shell(cont + " -in inputs/drum.in -var name off", dir, "off.out");
+        off = shell(cont + " -in inputs/drum.in -var name off -var balance off", dir, "off.out");
         on = shell(cont + " -in inputs/drum.in -var name on -var balance on", dir, "on.out");
         stale = shell(cont + " -in stale.in -var name stale -var balance on", dir, "stale.out");
     }

@@ -1,0 +1,122 @@
+#!/usr/bin/python3
+"""Speed of the full thesis scene: each lever measured on the 65k-bead drum from one settled state.
+
+From --restart (the 24 mm scene, settled), at the recommended settings (dt = tc/5 with
+exactRestitution on), short runs of --time simulated seconds, the variants interleaved over
+--rounds (A B C ... A B C ...):
+  mesh            static mesh with a surface velocity, rank cut in the middle of the box (the old default)
+  balance         the same with the rank cut at the beads' median (-var balance on)
+  cylinder        balance, and the drum as a primitive cylinder (-var wall cylinder)
+  skin 0.3, 0.7   balance with a neighbour skin of 0.3 / 0.7 bead diameters (default 0.5)
+  stock           balance with stock hooke/stiffness fed the same (exact) constants: the peer
+  1 rank          the mesh variant on one rank: the parallel efficiency t(1) / (2 t(2)) per round
+Cost: LIGGGHTS loop time (median, and the range over rounds), particle-steps per second, beads,
+ghosts and neighbour pairs per rank (LIGGGHTS' Nlocal/Nghost/Neighs), neighbour-list builds.
+Writes OUT/full_scene.csv (one row per run) and OUT/full_scene.json."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+import harness  # noqa: E402
+import common  # noqa: E402
+
+RATIO = 5  # dt = tc/5 with exactRestitution on: the recommended setting
+# name: (ranks, drum.in -var overrides)
+BASE = {"balance": "off", "wall": "surface", "skin": 0.5, "model": "viscoelastic"}  # explicit: defaults change
+VARIANTS = {
+    "mesh": (2, BASE),
+    "balance": (2, {**BASE, "balance": "on"}),
+    "cylinder": (2, {**BASE, "balance": "on", "wall": "cylinder"}),
+    "skin 0.3": (2, {**BASE, "balance": "on", "skin": 0.3}),
+    "skin 0.7": (2, {**BASE, "balance": "on", "skin": 0.7}),
+    "stock": (2, {**BASE, "balance": "on", "model": "hooke"}),
+    "1 rank": (1, BASE),
+}
+
+
+def parser():
+    p = harness.options(__doc__, out=common.RESULTS, rounds=3, restart=None)
+    p.add_argument("--time", type=float, default=0.02, help="simulated s per run (default: 0.02)")
+    p.add_argument("--period", type=float, default=0.024, help="axial period of the state [m] (default: 0.024)")
+    p.add_argument("--variants", default=",".join(VARIANTS), help="which variants (default: all)")
+    return p
+
+
+def run(args):
+    dt = common.dt_of(RATIO)
+    stock = harness.post("full_scene/stock.in")
+    stock.parent.mkdir(parents=True, exist_ok=True)
+    stock.write_text(harness.tool("contact_law", "stock", "--exact", "--dt", f"{dt:.10g}"))
+    names = [v.strip() for v in args.variants.split(",")]
+    unknown = [n for n in names if n not in VARIANTS]
+    if unknown:
+        raise SystemExit(f"full_scene: unknown variant(s) {', '.join(unknown)} (of {', '.join(VARIANTS)})")
+
+    def variant(name):
+        ranks, extra = VARIANTS[name]
+        tag = "full_scene/" + name.replace(" ", "_")
+        return lambda: harness.drum(harness.post(tag + ".log"), np=ranks, period=args.period, rpm=common.RPM, dt=dt,
+                                    exact="on", time=args.time, dumpdt=1000, start="restart", restart=args.restart,
+                                    stock=stock, name=tag, **extra)
+
+    logs = harness.interleaved({n: variant(n) for n in names}, args.rounds,
+                               progress=lambda s: harness.say("full_scene", s))
+    rows = [{"variant": n, "round": i + 1, "ranks": lg.procs, "loop_s": lg.loop_time, "steps": lg.steps,
+             "beads": lg.atoms, "particle_steps_per_s": lg.particle_steps_per_s,
+             "nlocal_max": lg.per_rank["Nlocal"][1], "nlocal_min": lg.per_rank["Nlocal"][2],
+             "nghost_max": lg.per_rank["Nghost"][1], "neighs_max": lg.per_rank["Neighs"][1],
+             "neighs_min": lg.per_rank["Neighs"][2], "neighbor_builds": lg.neighbor_builds}
+            for n in names for i, lg in enumerate(logs[n])]
+    harness.write_csv(Path(args.out) / "full_scene.csv", rows)
+    harness.write_json(Path(args.out) / "full_scene.json", {
+        "restart": str(args.restart), "time_s": args.time, "rounds": args.rounds, "period_m": args.period,
+        "dt_s": dt, "tc_over_dt": RATIO, "cores": harness.machine()["cores"], "date": common.today()})
+
+
+def summary(rows):
+    """One row per variant: median loop time and its range, rate, ratio to `mesh` per round."""
+    by = {}
+    for r in rows:
+        by.setdefault(r["variant"], []).append(r)
+    mesh = [r["loop_s"] for r in by.get("mesh", [])]
+    table = []
+    for name, runs in by.items():
+        loops = [r["loop_s"] for r in runs]
+        row = {"variant": name, "ranks": int(runs[0]["ranks"]), "loop": harness.median(loops),
+               "range": "–".join(f"{x:.1f}" for x in harness.spread(loops)),
+               "psps": harness.median([r["particle_steps_per_s"] for r in runs]),
+               "beads": f"{runs[0]['nlocal_max']:.0f} / {runs[0]['nlocal_min']:.0f}",
+               "neighs": f"{runs[0]['neighs_max']:.0f} / {runs[0]['neighs_min']:.0f}",
+               "builds": f"{runs[0]['neighbor_builds']:.0f}",
+               "vs_mesh": harness.median_ratio(mesh, loops) if mesh else float("nan")}
+        if name != "1 rank" and "1 rank" in by:
+            one = [r["loop_s"] for r in by["1 rank"]]
+            row["efficiency"] = harness.median([a / (row["ranks"] * b) for a, b in zip(one, loops)])
+        else:
+            row["efficiency"] = float("nan")
+        table.append(row)
+    return table
+
+
+@common.section_of("full_scene", "full_scene")
+def section(res, m, rows):
+    table = summary(rows)
+    beads = int(rows[0]["beads"])
+    return (
+        f"The thesis scene ({1e3 * m['period_m']:.0f} mm period, {beads:,} beads) from `{m['restart']}` at "
+        f"{common.RPM} rpm, dt = tc/{m['tc_over_dt']:g} with exactRestitution on, {m['time_s']:g} s per run,\n"
+        f"{m['rounds']} interleaved rounds, {m['date']} ({m['cores']} cores). Speed-up: the median over rounds of "
+        "t(mesh) / t(variant); efficiency: t(1 rank) / (2 t(variant)).\n\n"
+        + harness.markdown(table, [("variant", "variant", None), ("ranks", "ranks", None),
+                                   ("loop time [s] (median, range)", lambda r: f"{r['loop']:.1f} ({r['range']})", None),
+                                   ("particle-steps/s", "psps", "{:.3g}"), ("speed-up vs mesh", "vs_mesh", "{:.2f}"),
+                                   ("parallel efficiency", "efficiency", "{:.2f}"),
+                                   ("beads per rank (max / min)", "beads", None),
+                                   ("neighbour pairs per rank (max / min)", "neighs", None),
+                                   ("neighbour builds", "builds", None)])
+        + "\n" + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"])))
+
+
+if __name__ == "__main__":
+    run(parser().parse_args())
