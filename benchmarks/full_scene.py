@@ -115,7 +115,23 @@ def section(res, m, rows):
                                    ("beads per rank (max / min)", "beads", None),
                                    ("neighbour pairs per rank (max / min)", "neighs", None),
                                    ("neighbour builds", "builds", None)])
-        + "\n" + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"])))
+        + "\n" + verdict(table, rows)
+        + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"])))
+
+
+def verdict(table, rows):
+    """The fastest two-rank variant, and ours against stock on the same scene and settings."""
+    two = [r for r in table if r["ranks"] == 2]
+    best = max(two, key=lambda r: r["psps"])
+    text = (f"Fastest: {best['variant']}, {best['psps']:.3g} particle-steps/s on 2 ranks (parallel efficiency "
+            f"{best['efficiency']:.2f}). Each lever was measured alone on top of `balance`; runs of "
+            f"{int(rows[0]['steps'])} steps, so rebuild-heavy settings (a thin skin) need a longer check.\n")
+    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in ("balance", "stock")}
+    if all(loops.values()):
+        text += (f"Ours (`balance`) against stock `hooke/stiffness` given the same constants, same scene and settings: "
+                 f"loop-time ratio ours / stock {harness.median_ratio(loops['balance'], loops['stock']):.3f} "
+                 "(median over rounds).\n")
+    return text + "\n"
 
 
 if __name__ == "__main__":
