@@ -171,6 +171,34 @@ TEST(DrumMetrics, FlowingLayerOfALinearProfile)
     }
 }
 
+// "At mid-chord" matters: the same bed with a profile whose zero deepens along
+// the surface, zero(s) = 15 mm (1 + s / 50 mm), s the distance downhill from
+// the mid-chord point (the point of the plane above the middle of the bed's
+// y extent). Measured there, the thickness is zero(0) - eps as above; measured
+// at y = 0 instead (23 mm uphill at 25 deg, z0 = -0.06) it would be 7 mm
+// thinner, twice the tolerance band. Across the +-2 d strip 1/zero varies by
+// +-12 %, which shifts a bin's mean u by under 1 % of u0 (second order).
+TEST(DrumMetrics, FlowingLayerIsMeasuredAtMidChord)
+{
+    const double u0 = 0.5, z0 = -0.06, theta = 25.0, zero0 = 0.015, length = 0.05;
+    const double sn = std::sin(theta * M_PI / 180.0), c = std::cos(theta * M_PI / 180.0);
+    const double epsLow = kD * sn / 2 - 0.1 * kD, epsHigh = kD * (sn / 2 + c) + 0.1 * kD;
+    const Eigen::Vector3d downhill(0.0, -c, -sn);
+    drum::Bed b = bed(theta, z0, 0.0, 2);
+    double ymin = 1e300, ymax = -1e300;
+    for (const Eigen::Vector3d& p : b.position) ymin = std::min(ymin, p.y()), ymax = std::max(ymax, p.y());
+    const double ym = 0.5 * (ymin + ymax);
+    const Eigen::Vector3d mid(0.0, ym, z0 + std::tan(theta * M_PI / 180.0) * ym);
+    for (const Eigen::Vector3d& p : b.position) {
+        const double H = (z0 + std::tan(theta * M_PI / 180.0) * p.y() - p.z()) * c;
+        const double along = (Eigen::Vector3d(0.0, p.y(), p.z()) - mid).dot(downhill);
+        b.velocity.push_back(u0 * (1.0 - H / (zero0 * (1.0 + along / length))) * downhill);
+    }
+    const drum::BedMetrics m = drum::measureBed(b, 1.0);
+    EXPECT_GE(m["layer_thickness"], zero0 - epsHigh);
+    EXPECT_LE(m["layer_thickness"], zero0 - epsLow);
+}
+
 TEST(DrumSteadyState, DetectsTheEndOfATransientAndRejectsTrends)
 {
     std::mt19937 rng(7);
@@ -306,4 +334,127 @@ TEST(DrumMesh, RegeneratesTheCommittedMeshes)
         }
     }
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// x_t = phi x_{t-1} + e_t, e_t ~ N(0, sigmaE^2), started in its stationary law.
+std::vector<double> ar1(int n, double phi, double sigmaE, std::mt19937& rng)
+{
+    std::normal_distribution<double> e(0.0, sigmaE);
+    std::vector<double> x(n);
+    x[0] = e(rng) / std::sqrt(1.0 - phi * phi);
+    for (int t = 1; t < n; ++t) x[t] = phi * x[t - 1] + e(rng);
+    return x;
+}
+
+}  // namespace
+
+TEST(DrumSteadyState, BatchMeansUseTheLastWholeBatches)
+{
+    // 7 samples, batches of 3: the oldest sample is dropped, batch means 2 and 5
+    const drum::Average a = drum::average({100.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, 0, 3);
+    EXPECT_EQ(a.batches, 2);
+    EXPECT_DOUBLE_EQ(a.mean, 3.5);
+    EXPECT_DOUBLE_EQ(a.stdError, 1.5);  // sd(2, 5) / sqrt(2) = (3 / sqrt 2) / sqrt 2
+    EXPECT_TRUE(std::isnan(drum::average({1.0, 2.0, 3.0, 4.0}, 0, 3).stdError));  // one batch
+    EXPECT_EQ(drum::average({1.0, 2.0, 3.0, 4.0}, 0, 3).batches, 1);
+    EXPECT_EQ(drum::average(std::vector<double>(50, 1.0), 0).batches, 5);  // the default: 5 batches
+}
+
+// AR(1) with phi = 0.9, sigma_e = 1: sigma_x^2 = 1 / (1 - phi^2) and the
+// standard error of the mean of n samples is, asymptotically,
+// sigma_x sqrt((1 + phi) / ((1 - phi) n)) = sqrt(100 / n) (the naive
+// sigma_x / sqrt(n) is sqrt(19) = 4.4 times too small). n = 10000 in nb = 20
+// batches of m = 500 (the correlation time is 1 / (1 - phi) = 10 samples).
+//
+// Tolerance on mean(SE^2) over M replicas: each SE^2 = s_b^2 / nb with s_b^2
+// a variance estimate of nb - 1 dof, so SE^2 / E[SE^2] ~ chi2(nb-1) / (nb-1),
+// relative sd sqrt(2 / (nb - 1)) = 0.324; the mean over M = 400 independent
+// replicas has relative sd 0.324 / 20 = 0.0162: 3 sd = 4.9 %. Bias: a batch
+// mean of m samples has variance sigma_x^2 / m (19 - 2 phi (1 - phi^m) /
+// (m (1 - phi)^2)), i.e. 1.9 % below the asymptotic value for m = 500, and
+// the finite-n SE^2 is 0.1 % below it: total tolerance 4.9 + 1.9 + 0.1 -> 7 %.
+//
+// Coverage: (mean - 0) / SE is Student t with nb - 1 = 19 dof, P(|t| < 2) =
+// 0.940; the coverage over M = 400 replicas has binomial sd sqrt(0.94 0.06 /
+// 400) = 0.012: 3 sd -> [0.904, 0.976]. Pairs of independent replicas:
+// (m1 - m2) / sqrt(se1^2 + se2^2) is close to t with 38 dof, P(|t| < 2) =
+// 0.947; M / 2 = 200 pairs, binomial sd 0.016: 3 sd -> [0.90, 0.99]. The naive
+// SE covers +-2 naive SE = +-0.46 true SE: P = 0.35 (3 sd over 400 replicas:
+// < 0.42), so the test can tell the two apart.
+TEST(DrumSteadyState, BatchMeansStandardErrorOfAnAR1SeriesIsHonest)
+{
+    const double phi = 0.9, sigmaE = 1.0;
+    const int n = 10000, batch = 500, replicas = 400;
+    const double sigmaX2 = sigmaE * sigmaE / (1.0 - phi * phi);
+    const double trueSE2 = sigmaX2 * (1.0 + phi) / ((1.0 - phi) * n);
+    std::mt19937 rng(2026);
+    double meanSE2 = 0.0;
+    int covered = 0, naiveCovered = 0, pairsAgree = 0;
+    drum::Average previous;
+    for (int r = 0; r < replicas; ++r) {
+        const std::vector<double> x = ar1(n, phi, sigmaE, rng);
+        const drum::Average a = drum::average(x, 0, batch);
+        ASSERT_EQ(a.batches, 20);
+        meanSE2 += a.stdError * a.stdError / replicas;
+        covered += std::abs(a.mean) <= 2.0 * a.stdError;
+        double var = 0.0;
+        for (double v : x) var += (v - a.mean) * (v - a.mean);
+        const double naive = std::sqrt(var / (n - 1) / n);
+        naiveCovered += std::abs(a.mean) <= 2.0 * naive;
+        if (r % 2 == 1)
+            pairsAgree += std::abs(a.mean - previous.mean) <=
+                          2.0 * std::sqrt(a.stdError * a.stdError + previous.stdError * previous.stdError);
+        previous = a;
+    }
+    const double coverage = double(covered) / replicas, naiveCoverage = double(naiveCovered) / replicas;
+    const double pairCoverage = double(pairsAgree) / (replicas / 2);
+    std::printf("mean SE^2 / true %.4f, coverage %.3f (naive %.3f), pairs agreeing %.3f\n", meanSE2 / trueSE2,
+                coverage, naiveCoverage, pairCoverage);
+    EXPECT_NEAR(meanSE2 / trueSE2, 1.0, 0.07);
+    EXPECT_GE(coverage, 0.904);
+    EXPECT_LE(coverage, 0.976);
+    EXPECT_GE(pairCoverage, 0.90);
+    EXPECT_LE(pairCoverage, 0.99);
+    EXPECT_LT(naiveCoverage, 0.42);
+}
+
+// The stop rule on a transient (30 exp(-t / 200): settled after about 5
+// time constants, 1000 samples) plus AR(1) noise (phi 0.9, sigma_e 1, so the
+// predicted SE of n averaged samples is 10 / sqrt(n)), batches of 200
+// samples, target SE 0.1. 5000 samples: about 4000-4400 averaged, predicted
+// SE 0.15-0.16, 1.5 times the target: not done (the batch-means estimate of
+// about 21 batches has a relative sd of 0.16, so 1.5x is 3 sd away).
+// 41000 samples: 40000 averaged, predicted SE 0.05, half the target: done.
+TEST(DrumSteadyState, StopRuleSettlesThenReachesItsTarget)
+{
+    const double phi = 0.9, target = 0.1;
+    const int batch = 200;
+    for (unsigned seed : {1u, 2u, 3u, 4u, 5u}) {
+        std::mt19937 rng(seed);
+        std::vector<double> x = ar1(41000, phi, 1.0, rng);
+        for (size_t t = 0; t < x.size(); ++t) x[t] += 30.0 * std::exp(-double(t) / 200.0);
+        const std::vector<double> shortRun(x.begin(), x.begin() + 5000);
+        const drum::Verdict s = drum::stopRule({shortRun}, {{shortRun, target}}, batch);
+        EXPECT_TRUE(s.settled) << seed;
+        EXPECT_GE(s.from, 277) << seed;   // after the transient's bulk: below a quarter (200 ln 4)
+        EXPECT_LE(s.from, 1500) << seed;
+        EXPECT_GE(s.batches, 5) << seed;
+        EXPECT_GT(s.averages[0].stdError, target) << seed;
+        EXPECT_FALSE(s.done) << seed;
+        const drum::Verdict l = drum::stopRule({x}, {{x, target}}, batch);
+        EXPECT_TRUE(l.settled) << seed;
+        EXPECT_LE(l.averages[0].stdError, target) << seed;
+        EXPECT_NEAR(l.averages[0].stdError, 10.0 / std::sqrt(double(x.size() - l.from)), 0.3 * target) << seed;
+        EXPECT_TRUE(l.done) << seed;
+        EXPECT_FALSE(drum::stopRule({x}, {{x, target}}, batch, l.batches + 1).done) << seed;  // min-batches
+    }
+    // a pure trend never settles, however small its noise
+    std::vector<double> trend(5000);
+    for (size_t t = 0; t < trend.size(); ++t) trend[t] = 1e-3 * double(t);
+    const drum::Verdict v = drum::stopRule({trend}, {{trend, 1e6}}, batch);
+    EXPECT_FALSE(v.settled);
+    EXPECT_FALSE(v.done);
+    EXPECT_EQ(v.from, 2500);  // averaged over the last half
 }

@@ -4,7 +4,11 @@
 //   drum_metrics series --prefix post/drum_21rpm --dt 1e-5 --rpm 21 [--skip T0] [--until T1]
 //                       [--out O] [--average steady|all]
 //       O_metrics.csv (time_s,beads,wall_contacts,<metric columns>), O_metrics.png,
-//       O_average.csv (rpm,beads,steady_from_s,snapshots,<metric column, its _se_ column>...)
+//                       [--batch-seconds B]
+//       O_average.csv (rpm,beads,steady_from_s,snapshots,batches,<metric column, its _se_ column>...)
+//   drum_metrics steady --prefix P --dt DT --rpm RPM --batch-seconds B [--target Hc=0.0003 ...]
+//                       [--min-batches 5] [--skip T0]
+//       the stop rule: one CSV row settled,steady_from_s,snapshots,batches,done,<metric>,<metric>_se_<unit>...
 //   drum_metrics table --out post/sweep post/drum_*rpm_average.csv
 //       the averages by column name, one row per run sorted by rpm: O.csv, O.md, O.png
 //   drum_metrics metrics
@@ -18,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -53,7 +58,7 @@ std::vector<std::pair<long, fs::path>> beadFiles(const std::string& prefix)
 // then each metric's time average and its standard error.
 std::vector<std::string> averageColumns()
 {
-    std::vector<std::string> c = {"rpm", "beads", "steady_from_s", "snapshots"};
+    std::vector<std::string> c = {"rpm", "beads", "steady_from_s", "snapshots", "batches"};
     for (const drum::Metric& m : table()) c.push_back(m.column()), c.push_back(m.seColumn());
     return c;
 }
@@ -109,8 +114,8 @@ std::vector<double> finiteTail(const std::vector<double>& v, int from)
     return out;
 }
 
-int series(const std::string& prefix, const std::string& outPrefix, double dt, double rpm, double skip, double until,
-           bool steady)
+// The metrics of the snapshots of `prefix` between skip and until (at least 2).
+std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, double rpm, double skip, double until)
 {
     const double omegaSign = rpm >= 0 ? 1.0 : -1.0;
     std::vector<drum::BedMetrics> ms;
@@ -123,6 +128,43 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
         throw std::runtime_error("found " + std::to_string(ms.size()) + " snapshot(s) of " + prefix + " between " +
                                  number(skip) + " and " + number(until) +
                                  " s (--skip, --until, --dt); a time series and its averages need at least 2");
+    return ms;
+}
+
+// --batch-seconds as a whole number of snapshots (0: none given, 5 batches),
+// rounded to the nearest: a drum revolution (60/rpm s) is rarely a multiple
+// of the snapshot spacing, and a batch a fraction of a spacing short of it
+// still spans the revolution's correlations. At least 10 snapshots, so the
+// rounding changes the batch by under 5 %.
+int batchSamples(double batchSeconds, const std::vector<drum::BedMetrics>& ms)
+{
+    if (batchSeconds <= 0.0) return 0;
+    const double spacing = ms[1].time - ms[0].time;
+    const double k = batchSeconds / spacing;
+    if (std::round(k) < 10)
+        throw std::runtime_error("--batch-seconds " + number(batchSeconds) + " holds " + number(k) +
+                                 " snapshots (spacing " + number(spacing) +
+                                 " s); a batch needs at least 10: dump more often");
+    return static_cast<int>(std::round(k));
+}
+
+// The series of the metrics the steady-state detection watches.
+std::vector<std::vector<double>> watchedSeries(const std::vector<drum::BedMetrics>& ms)
+{
+    std::vector<std::vector<double>> watched;
+    for (size_t i = 0; i < table().size(); ++i) {
+        if (!table()[i].steadiness) continue;
+        watched.emplace_back();
+        for (const drum::BedMetrics& m : ms) watched.back().push_back(m.values[i]);
+    }
+    return watched;
+}
+
+int series(const std::string& prefix, const std::string& outPrefix, double dt, double rpm, double skip, double until,
+           bool steady, double batchSeconds)
+{
+    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, until);
+    const int batchSize = batchSamples(batchSeconds, ms);
     const std::string out = outPrefix.empty() ? prefix : outPrefix;
     const std::string csvFile = out + "_metrics.csv";
     std::ofstream csv(csvFile);
@@ -147,10 +189,7 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
     int start = 0;
     double tSteady = ms.front().time;
     if (steady) {
-        std::vector<std::vector<double>> watched;
-        for (size_t i = 0; i < table().size(); ++i)
-            if (table()[i].steadiness) watched.push_back(values[i]);
-        start = drum::steadyStart(watched);
+        start = drum::steadyStart(watchedSeries(ms));
         tSteady = start >= 0 ? ms[start].time : NAN;
         if (start < 0)
             std::printf("no steady state yet: the metrics still drift at the end of the run; averages over the last half\n");
@@ -162,10 +201,12 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
     }
     const int from = start >= 0 ? start : int(ms.size()) / 2;
     std::vector<std::string> row = {number(rpm), std::to_string(ms.back().beads), number(tSteady),
-                                    std::to_string(int(ms.size()) - from)};
+                                    std::to_string(int(ms.size()) - from), ""};
+    int batches = std::numeric_limits<int>::max();
     for (size_t i = 0; i < table().size(); ++i) {
         const std::vector<double> tail = finiteTail(values[i], from);
-        const drum::Average a = drum::average(tail, 0);
+        const drum::Average a = batchSize > 0 ? drum::average(tail, 0, batchSize) : drum::average(tail, 0);
+        batches = std::min(batches, a.batches);
         const std::string name = table()[i].label + " [" + table()[i].unit + "]";
         std::printf("  %-36s %12.6g +- %.2g", name.c_str(), a.mean, a.stdError);
         if (tail.size() + from < values[i].size())
@@ -173,6 +214,7 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
         std::printf("\n");
         row.push_back(number(a.mean)), row.push_back(number(a.stdError));
     }
+    row[4] = std::to_string(batches);
     std::ofstream avg(out + "_average.csv");
     writeRow(avg, averageColumns());
     writeRow(avg, row);
@@ -278,6 +320,59 @@ int crossSpeedTable(const std::string& out, const std::vector<std::string>& file
     return 0;
 }
 
+// "key=value" targets by metric key (default: Hc 0.3 mm, angle 0.3 deg).
+std::vector<std::pair<size_t, double>> parseTargets(const std::vector<std::string>& specs)
+{
+    const std::vector<std::string> given = specs.empty() ? std::vector<std::string>{"Hc=0.0003", "angle=0.3"} : specs;
+    std::vector<std::pair<size_t, double>> targets;
+    for (const std::string& s : given) {
+        const size_t eq = s.find('=');
+        const std::string key = s.substr(0, eq);
+        size_t i = 0;
+        while (i < table().size() && table()[i].key != key) ++i;
+        if (i == table().size()) {
+            std::string keys;
+            for (const drum::Metric& m : table()) keys += (keys.empty() ? "" : ", ") + m.key;
+            throw std::runtime_error("--target " + s + ": unknown metric '" + key + "' (keys: " + keys + ")");
+        }
+        double se = NAN;
+        try {
+            se = eq == std::string::npos ? NAN : std::stod(s.substr(eq + 1));
+        } catch (const std::exception&) {
+        }
+        if (!(se > 0.0)) throw std::runtime_error("--target " + s + ": expected " + key + "=<standard error > 0>");
+        targets.emplace_back(i, se);
+    }
+    return targets;
+}
+
+// The stop rule on one run: one CSV row on stdout.
+int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip, double batchSeconds,
+                  const std::vector<std::string>& targetSpecs, int minBatches)
+{
+    const std::vector<std::pair<size_t, double>> targeted = parseTargets(targetSpecs);
+    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300);
+    const int batchSize = batchSamples(batchSeconds, ms);
+    std::vector<drum::Target> targets;
+    for (const auto& [i, se] : targeted) {
+        targets.push_back({{}, se});
+        for (const drum::BedMetrics& m : ms) targets.back().series.push_back(m.values[i]);
+    }
+    const drum::Verdict v = drum::stopRule(watchedSeries(ms), targets, batchSize, minBatches);
+    std::vector<std::string> header = {"settled", "steady_from_s", "snapshots", "batches", "done"};
+    std::vector<std::string> row = {v.settled ? "1" : "0", v.settled ? number(ms[v.from].time) : "nan",
+                                    std::to_string(int(ms.size()) - v.from), std::to_string(v.batches),
+                                    v.done ? "1" : "0"};
+    for (size_t k = 0; k < targeted.size(); ++k) {
+        const drum::Metric& m = table()[targeted[k].first];
+        header.push_back(m.column()), header.push_back(m.seColumn());
+        row.push_back(number(v.averages[k].mean)), row.push_back(number(v.averages[k].stdError));
+    }
+    writeRow(std::cout, header);
+    writeRow(std::cout, row);
+    return 0;
+}
+
 // The metric table as CSV: column,unit,description.
 int listMetrics()
 {
@@ -308,6 +403,23 @@ int main(int argc, char** argv)
                   "all: every snapshot in [skip, until] (steady_from_s = the first one's time)")
         ->check(CLI::IsMember({"steady", "all"}))
         ->capture_default_str();
+    double batchSeconds = 0.0;
+    s->add_option("--batch-seconds", batchSeconds,
+                  "batch means over batches of this many seconds (e.g. a revolution, 60/rpm; a multiple of the "
+                  "snapshot spacing) instead of 5 batches")
+        ->check(CLI::PositiveNumber);
+    std::vector<std::string> targetSpecs;
+    int minBatches = 5;
+    CLI::App* st = app.add_subcommand("steady", "the stop rule: settled, and the target standard errors reached?");
+    st->add_option("--prefix", prefix, "bead files are <prefix>_<step>.vtp")->required();
+    st->add_option("--dt", dt, "timestep of the run [s]")->check(CLI::PositiveNumber)->capture_default_str();
+    st->add_option("--rpm", rpm, "drum speed (sign: direction about +x)")->required();
+    st->add_option("--batch-seconds", batchSeconds, "batch length [s] (a multiple of the snapshot spacing)")
+        ->required()
+        ->check(CLI::PositiveNumber);
+    st->add_option("--target", targetSpecs, "KEY=SE in the metric's unit (default: Hc=0.0003 angle=0.3)");
+    st->add_option("--min-batches", minBatches, "fewest whole batches for done")->capture_default_str();
+    st->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
     t->add_option("--out", out, "output prefix")->capture_default_str();
     t->add_option("files", files, "<prefix>_average.csv files")->required();
@@ -325,7 +437,8 @@ int main(int argc, char** argv)
             return 0;
         }
         if (*l) return listMetrics();
-        if (*s) return series(prefix, seriesOut, dt, rpm, skip, until, averaging == "steady");
+        if (*s) return series(prefix, seriesOut, dt, rpm, skip, until, averaging == "steady", batchSeconds);
+        if (*st) return steadyVerdict(prefix, dt, rpm, skip, batchSeconds, targetSpecs, minBatches);
         return crossSpeedTable(out, files);
     } catch (const std::exception& e) {
         std::cerr << "drum_metrics: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -318,13 +319,19 @@ int mserTruncation(const std::vector<double>& v)
     const int n = static_cast<int>(v.size());
     int best = 0;
     double bestValue = 1e300;
-    for (int d = 0; d < n - 1; ++d) {
-        const double mu = mean(v, d, n);
-        double sse = 0.0;
-        for (int i = d; i < n; ++i) sse += (v[i] - mu) * (v[i] - mu);
-        const double value = sse / (double(n - d) * double(n - d));
-        if (value < bestValue) bestValue = value, best = d;
+    if (n < 2) return 0;
+    // running sums from the end, about the overall mean (O(n), not O(n^2))
+    const double c = mean(v, 0, n);
+    double s1 = (v[n - 1] - c), s2 = s1 * s1;
+    std::vector<double> value(n, 0.0);
+    for (int d = n - 2; d >= 0; --d) {
+        const double y = v[d] - c;
+        s1 += y, s2 += y * y;
+        const double k = double(n - d);
+        value[d] = std::max(0.0, s2 - s1 * s1 / k) / (k * k);
     }
+    for (int d = 0; d < n - 1; ++d)
+        if (value[d] < bestValue) bestValue = value[d], best = d;
     return best;
 }
 
@@ -347,9 +354,48 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
 Average average(const std::vector<double>& v, int from)
 {
     const int n = static_cast<int>(v.size());
-    if (from < 0 || from >= n) return {NAN, NAN};
+    if (from < 0 || from >= n) return {NAN, NAN, 0};
     // one sample has no error estimate
-    return {mean(v, from, n), n - from < 2 ? NAN : stdErrorOfMean(v, from, n)};
+    if (n - from < 2) return {mean(v, from, n), NAN, 0};
+    return {mean(v, from, n), stdErrorOfMean(v, from, n), (n - from) / 5 >= 2 ? 5 : 0};
+}
+
+Average average(const std::vector<double>& v, int from, int batchSize)
+{
+    const int n = static_cast<int>(v.size());
+    if (batchSize < 1) throw std::invalid_argument("average: batch size " + std::to_string(batchSize) + " < 1");
+    if (from < 0 || from >= n) return {NAN, NAN, 0};
+    const int nb = (n - from) / batchSize;
+    if (nb == 0) return {mean(v, from, n), NAN, 0};
+    const int first = n - nb * batchSize;  // the oldest remainder is dropped
+    std::vector<double> bm(nb);
+    for (int b = 0; b < nb; ++b) bm[b] = mean(v, first + b * batchSize, first + (b + 1) * batchSize);
+    const double mu = mean(bm, 0, nb);
+    if (nb < 2) return {mu, NAN, nb};
+    double var = 0.0;
+    for (double x : bm) var += (x - mu) * (x - mu);
+    return {mu, std::sqrt(var / (nb - 1) / nb), nb};
+}
+
+Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
+                 int minBatches)
+{
+    Verdict r;
+    const int start = steadyStart(watched);
+    r.settled = start >= 0;
+    size_t n = 0;
+    for (const auto& w : watched) n = std::max(n, w.size());
+    r.from = r.settled ? start : int(n) / 2;
+    r.done = r.settled;
+    r.batches = targets.empty() ? 0 : std::numeric_limits<int>::max();
+    for (const Target& t : targets) {
+        const Average a = average(t.series, r.from, batchSize);
+        r.averages.push_back(a);
+        r.batches = std::min(r.batches, a.batches);
+        r.done = r.done && std::isfinite(a.stdError) && a.stdError <= t.stdError;
+    }
+    r.done = r.done && r.batches >= minBatches;
+    return r;
 }
 
 }  // namespace drum

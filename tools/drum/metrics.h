@@ -99,8 +99,32 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples =
 
 struct Average {
     double mean = 0.0, stdError = 0.0;
+    int batches = 0;  // batches behind stdError (0: none, or the naive estimate)
 };
-// Mean and standard error of v[from:], by batch means (autocorrelation included).
+// Mean and standard error of v[from:], by batch means (autocorrelation
+// included): 5 batches of equal count, never below the naive estimate.
 Average average(const std::vector<double>& v, int from);
+// The same by batches of `batchSize` samples (e.g. one drum revolution): the
+// last floor((n - from) / batchSize) whole batches of v[from:] are used (the
+// oldest remainder dropped), mean over them, SE = sd(batch means) / sqrt(nb);
+// nb < 2 gives a NaN SE.
+Average average(const std::vector<double>& v, int from, int batchSize);
+
+// The stop rule of a run segment: has the run settled (MSER on `watched`, as
+// steadyStart), and do the batch-means averages of the `targets` from the
+// steady start reach their target standard errors?
+struct Target {
+    std::vector<double> series;
+    double stdError;  // the target SE, in the series' unit
+};
+struct Verdict {
+    bool settled = false;  // steadyStart found a start in the first half
+    bool done = false;     // settled, batches >= minBatches, every SE <= its target
+    int from = -1;         // first sample averaged (the last half when not settled)
+    int batches = 0;       // whole batches averaged (the fewest over the targets)
+    std::vector<Average> averages;  // one per target
+};
+Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
+                 int minBatches = 5);
 
 }  // namespace drum

@@ -1,0 +1,61 @@
+"""The steady-state study driver's decisions (tools/drum/steady.py): which speeds are done,
+when a speed stops, targets. No LIGGGHTS runs (the end-to-end test runs a tiny drum)."""
+
+import sys
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+import chain  # noqa: E402
+import steady  # noqa: E402
+
+SETTINGS = {"period": "0.024", "variables": {"dt": "2e-5"}, "segment": 1.0, "cap": 30.0, "settle": 2.0,
+            "targets": {"Hc": 3e-4, "angle": 0.3}, "min_batches": 5}
+
+
+def committed(start, state, settings=SETTINGS):
+    return {"settings": settings, "start_state_sha256": start, "state_sha256": state}
+
+
+class Plan(unittest.TestCase):
+    def test_resumes_after_the_last_committed_speed(self):
+        c = {7: committed(None, "a"), 14: committed("a", "b"), 21: None, 28: None}
+        self.assertEqual(steady.plan([7, 14, 21, 28], c, SETTINGS), [(7, True), (14, True), (21, False), (28, False)])
+
+    def test_a_speed_from_an_older_state_of_its_predecessor_is_redone(self):
+        # 14 rpm was redone after 21 rpm started from its old state: 21 and everything after it run again
+        c = {7: committed(None, "a"), 14: committed("a", "b2"), 21: committed("b1", "c"), 28: committed("c", "d")}
+        self.assertEqual(steady.plan([7, 14, 21, 28], c, SETTINGS), [(7, True), (14, True), (21, False), (28, False)])
+
+    def test_other_settings_stop_the_study_naming_them(self):
+        other = dict(SETTINGS, segment=0.5)
+        with self.assertRaisesRegex(chain.PlanError, r"14 rpm is committed with other settings \(segment\)"):
+            steady.plan([7, 14], {7: committed(None, "a"), 14: committed("a", "b", other)}, SETTINGS)
+        self.assertEqual(steady.plan([7, 14], {7: committed(None, "a"), 14: committed("a", "b", other)}, SETTINGS,
+                                     force=True), [(7, True), (14, False)])
+
+
+class Verdict(unittest.TestCase):
+    def test_done_capped_continue(self):
+        self.assertEqual(steady.verdict({"done": 1.0}, 3.0, 30.0), "done")
+        self.assertEqual(steady.verdict({"done": 0.0}, 3.0, 30.0), "continue")
+        self.assertEqual(steady.verdict({"done": 0.0}, 30.0, 30.0), "capped")
+        self.assertEqual(steady.verdict({"done": 1.0}, 30.0, 30.0), "done")
+
+
+class Options(unittest.TestCase):
+    def test_targets(self):
+        self.assertEqual(steady.parse_targets(None), {"Hc": 3e-4, "angle": 0.3})
+        self.assertEqual(steady.parse_targets(["Hh=0.001"]), {"Hh": 0.001})
+        with self.assertRaisesRegex(chain.PlanError, "--target Hc: expected KEY=VALUE"):
+            steady.parse_targets(["Hc"])
+        with self.assertRaisesRegex(chain.PlanError, "must be > 0"):
+            steady.parse_targets(["Hc=0"])
+
+    def test_revolution_is_the_batch(self):
+        self.assertAlmostEqual(steady.revolution(21), 60 / 21)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,286 @@
+#!/usr/bin/python3
+"""The thesis study to steady state: each speed of the chain runs until its time averages reach target standard errors, and is committed with its end state as soon as it is done.
+
+The chain (section 3.4.2): the slowest speed starts from the grid, each faster one from the
+committed end state of the one before. A speed runs in segments of --segment simulated seconds
+(restart-chained, so an interrupted speed resumes from its last segment); after each segment
+`drum_metrics steady` decides: the metrics have settled (MSER) and the averages after the steady
+start, by batch means over whole drum revolutions, have standard errors within --target (default
+Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reaches --cap
+simulated seconds stops there, flagged. Then, for the speed: the time series and averages
+(`drum_metrics series`), a ParaView picture, the end state (compressed restart), the settings and
+the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, and with --commit the
+driver commits them. Rerunning the command continues from what is committed (and from the
+segments in post/NAME/ of a speed in progress); a committed speed with other settings stops it.
+
+  tools/drum/steady.py --name study_thesis --period 0.024 --var dt 2e-5 --var exact on --commit
+  tools/drum/steady.py --name tiny --speeds 21,28 --var fill 0.05 --segment 0.02 --cap 0.06 --settle 0.02
+"""
+
+import gzip
+import hashlib
+import math
+import shlex
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import harness  # noqa: E402
+import chain  # noqa: E402
+
+WHO = "steady"
+DEFAULT_TARGETS = {"Hc": 3e-4, "angle": 0.3}  # [m], [deg]: the issue's defaults
+# docs/drum/NAME.csv: one row per speed (the metrics' value and standard-error columns follow)
+TABLE = ["rpm", "conventions", "wall", "period_m", "beads", "dt_s", "settle_s", "average_s", "revolutions",
+         "batches", "done", "cpu_hours"]
+
+
+def revolution(rpm):
+    """One drum revolution [s]: the batch length of the time averages."""
+    return 60.0 / rpm
+
+
+def parse_targets(pairs):
+    """["Hc=0.0003", ...] -> {"Hc": 0.0003, ...}; none -> the defaults."""
+    targets = {}
+    for p in pairs or []:
+        key, _, value = p.partition("=")
+        try:
+            targets[key] = float(value)
+        except ValueError:
+            raise chain.PlanError(f"--target {p}: expected KEY=VALUE, e.g. Hc=0.0003") from None
+        if targets[key] <= 0:
+            raise chain.PlanError(f"--target {p}: must be > 0")
+    return targets or dict(DEFAULT_TARGETS)
+
+
+def settings_of(args):
+    """What makes two runs of a speed comparable: a committed speed with other settings is not
+    this study's."""
+    return {"period": args.period, "variables": args.variables, "segment": args.segment, "cap": args.cap,
+            "settle": args.settle, "targets": args.targets, "min_batches": args.min_batches}
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def plan(speeds, committed, settings, force=False):
+    """Which speeds to run. `committed`: {rpm: its run.json or None}. A speed counts as done if
+    committed with these settings and started from the state its predecessor has now (the start
+    state's hash), so redoing one speed redoes every faster one. A speed committed with other
+    settings stops the study (PlanError naming it) unless `force`. Returns [(rpm, done)]."""
+    out, previous_state = [], None
+    for rpm in speeds:
+        c = committed.get(rpm)
+        if c is not None and c["settings"] != settings and not force:
+            changed = sorted(k for k in set(c["settings"]) | set(settings)
+                             if c["settings"].get(k) != settings.get(k))
+            raise chain.PlanError(f"{rpm} rpm is committed with other settings ({', '.join(changed)}); "
+                                  "use another --name, or --force to redo it")
+        done = c is not None and c["settings"] == settings and c["start_state_sha256"] == previous_state
+        out.append((rpm, done))
+        previous_state = c["state_sha256"] if done else "pending"
+    return out
+
+
+def verdict(row, simulated, cap):
+    """After a segment: 'done' (settled, enough batches, errors within target), 'capped' (the
+    cap is reached first) or 'continue'."""
+    if row["done"] in (1.0, "1", "true", True):
+        return "done"
+    return "capped" if simulated >= cap - 1e-9 else "continue"
+
+
+class Study:
+    def __init__(self, args):
+        self.args = args
+        self.work = harness.REPO / "post" / args.name
+        self.docs = Path(args.docs).resolve() / args.name
+        self.settings = settings_of(args)
+        self.dt = float(args.variables.get("dt") or chain_default("dt"))
+
+    def committed(self, rpm):
+        p = self.docs / f"{rpm}rpm" / "run.json"
+        return harness.read_json(p) if p.exists() else None
+
+    def prefix(self, rpm):
+        return self.work / f"{rpm}rpm"
+
+    def state(self, rpm):
+        """The committed end state of a speed, unpacked into post/ (LIGGGHTS reads plain files)."""
+        packed = self.docs / f"{rpm}rpm" / "state.restart.gz"
+        plain = self.work / f"{rpm}rpm_committed.restart"
+        if not plain.exists() or plain.stat().st_mtime < packed.stat().st_mtime:
+            with gzip.open(packed, "rb") as src, open(plain, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+        return plain
+
+    def segment(self, rpm, k, start, seconds):
+        a = self.args
+        variables = {**a.variables, "rpm": rpm, "period": a.period, "time": f"{seconds:.10g}",
+                     "name": f"{a.name}/{rpm}rpm"}
+        variables.update({"start": "restart", "restart": start} if start else {"start": "grid"})
+        harness.say(WHO, f"{rpm} rpm, segment {k}: {seconds:g} s from {start.name if start else 'the grid'} ...")
+        log = harness.drum(self.work / f"{rpm}rpm_seg{k}.log", np=a.np, **variables)
+        return log
+
+    def check(self, rpm):
+        args = ["steady", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm,
+                "--batch-seconds", f"{revolution(rpm):.10g}", "--min-batches", self.args.min_batches]
+        for key, value in self.args.targets.items():
+            args += ["--target", f"{key}={value:g}"]
+        return harness.read_csv_text(harness.tool("drum_metrics", *args))[0]
+
+    def run_speed(self, rpm, start):
+        """Segments until the verdict; returns (verdict, progress record, end-state restart).
+        After each segment its end state is copied to <rpm>rpm_seg<k>.restart and only then
+        recorded in <rpm>rpm_progress.json: an interruption at any point resumes from a whole
+        state, and snapshots written after it (by an interrupted segment) are removed."""
+        a = self.args
+        self.work.mkdir(parents=True, exist_ok=True)
+        progress = self.work / f"{rpm}rpm_progress.json"
+        done = harness.read_json(progress) if progress.exists() else None
+        if not done or done["settings"] != self.settings or done["start"] != str(start):
+            for f in self.work.glob(f"{rpm}rpm[_.]*"):
+                f.unlink()
+            done = {"settings": self.settings, "start": str(start), "segments": 0, "simulated_s": 0.0,
+                    "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
+        for step, f in harness.snapshots(self.prefix(rpm)):
+            if done["last_step"] >= 0 and step > done["last_step"]:
+                f.unlink()
+        outcome = "continue"
+        while outcome == "continue":
+            k = done["segments"] + 1
+            grid = done["state"] is None and start is None
+            seconds = a.segment + (a.settle if grid else 0.0)
+            log = self.segment(rpm, k, None if grid else Path(done["state"] or start), seconds)
+            state = self.work / f"{rpm}rpm_seg{k}.restart"
+            shutil.copyfile(self.work / f"{rpm}rpm.restart", state)
+            if done["state"]:
+                Path(done["state"]).unlink(missing_ok=True)
+            done.update(segments=k, simulated_s=done["simulated_s"] + seconds, cpu_s=done["cpu_s"] + log.cpu_seconds,
+                        beads=log.atoms, last_step=harness.snapshots(self.prefix(rpm))[-1][0], state=str(state))
+            harness.write_json(progress, done)
+            row = self.check(rpm)
+            outcome = verdict(row, done["simulated_s"], a.cap)
+            errors = ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
+            harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
+                             f"{row['batches']} batches, {errors}: {outcome}")
+        return outcome, done, Path(done["state"])
+
+    def finish(self, rpm, outcome, done, restart, start_sha):
+        """Series, averages, picture and state of a finished speed into docs/, and its row."""
+        a = self.args
+        out = self.docs / f"{rpm}rpm"
+        out.mkdir(parents=True, exist_ok=True)
+        harness.tool("drum_metrics", "series", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm,
+                     "--batch-seconds", f"{revolution(rpm):.10g}", "--out", out / "series")
+        harness.tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", self.prefix(rpm), "--out", out / "picture.png")
+        with open(restart, "rb") as src, gzip.open(out / "state.restart.gz", "wb", compresslevel=9) as dst:
+            shutil.copyfileobj(src, dst)
+        average = harness.read_csv(out / "series_average.csv")[0]
+        record = {"rpm": rpm, "settings": self.settings, "outcome": outcome, "segments": done["segments"],
+                  "simulated_s": done["simulated_s"], "cpu_s": done["cpu_s"], "beads": done["beads"],
+                  "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
+                  "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
+        harness.write_json(out / "run.json", record)
+        steady_from = average["steady_from_s"]
+        t_end = max(s for s, _ in harness.snapshots(self.prefix(rpm))) * self.dt
+        averaged = t_end - steady_from if not math.isnan(steady_from) else float("nan")
+        row = {"rpm": rpm, "conventions": a.variables.get("conventions", "thesis"),
+               "wall": a.variables.get("wall", "surface"), "period_m": float(a.period), "beads": done["beads"],
+               "dt_s": self.dt, "settle_s": steady_from - (t_end - done["simulated_s"]), "average_s": averaged,
+               "revolutions": averaged / revolution(rpm), "batches": average.get("batches", float("nan")),
+               "done": outcome == "done", "cpu_hours": done["cpu_s"] / 3600}
+        row.update({k: v for k, v in average.items() if "_" in k and k not in ("steady_from_s",)
+                    and k.split("_")[0] not in ("rpm", "beads", "snapshots", "batches")})
+        table = self.docs.with_suffix(".csv")
+        rows = [r for r in (harness.read_csv(table) if table.exists() else []) if r["rpm"] != rpm]
+        rows = sorted(rows + [row], key=lambda r: r["rpm"])
+        harness.write_csv(table, rows, TABLE + [k for k in row if k not in TABLE])
+        if a.commit:
+            subprocess.run(["git", "add", str(out), str(table)], cwd=harness.REPO, check=True)
+            subprocess.run(["git", "commit", "-q", "-m", f"Drum study {a.name}: {rpm} rpm ({outcome}, "
+                            f"{done['simulated_s']:g} s simulated)"], cwd=harness.REPO, check=True)
+        harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
+                         f"{' and committed' if a.commit else ''}")
+
+    def main(self):
+        a = self.args
+        self.command = "tools/drum/steady.py " + shlex.join(sys.argv[1:])
+        steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force)
+        for rpm, done in steps:
+            harness.say(WHO, f"plan: {rpm} rpm: {'committed' if done else 'to run'}")
+        if a.dry_run:
+            return 0
+        previous = None
+        for rpm, done in steps:
+            if not done:
+                start = self.state(previous) if previous else None
+                start_sha = self.committed(previous)["state_sha256"] if previous else None
+                began = time.monotonic()
+                outcome, record, restart = self.run_speed(rpm, start)
+                self.finish(rpm, outcome, record, restart, start_sha)
+                harness.say(WHO, f"{rpm} rpm took {(time.monotonic() - began) / 60:.1f} min")
+            previous = rpm
+        return 0
+
+
+def chain_default(name):
+    import study
+    return study.drum_default(name)
+
+
+def arguments(argv=None):
+    p = harness.options(__doc__, np=2)
+    p.add_argument("--name", default="study_thesis", help="docs/drum/NAME/ and post/NAME/ (default: %(default)s)")
+    p.add_argument("--speeds", default="7,14,21,28,35,42,49,56,63", help="rpm, ascending (default: %(default)s)")
+    p.add_argument("--period", default="0.024", help="axial period [m] (default: %(default)s, the thesis scene)")
+    p.add_argument("--segment", type=float, default=1.0, help="simulated seconds per segment (default: %(default)s)")
+    p.add_argument("--settle", type=float, default=2.0,
+                   help="extra seconds of the first segment of a grid start (default: %(default)s)")
+    p.add_argument("--cap", type=float, default=30.0, help="simulated seconds at most per speed (default: %(default)s)")
+    p.add_argument("--target", action="append", metavar="KEY=SE",
+                   help="standard error to reach, per metric key of `drum_metrics metrics` (repeatable; "
+                        "default: Hc=0.0003 angle=0.3)")
+    p.add_argument("--min-batches", type=int, default=5, help="batches (revolutions) at least (default: %(default)s)")
+    p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"), default=[],
+                   help="a drum.in -var for every run (repeatable), e.g. --var dt 2e-5 --var exact on")
+    p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"),
+                   help="where finished speeds go: DOCS/NAME/<rpm>rpm/ and DOCS/NAME.csv (default: docs/drum)")
+    p.add_argument("--commit", action="store_true", help="git commit each speed as soon as it is done")
+    p.add_argument("--force", action="store_true", help="redo speeds committed with other settings")
+    p.add_argument("--dry-run", action="store_true", help="print the plan, run nothing")
+    args = p.parse_args(argv)
+    try:
+        args.speeds = chain.parse_speeds(args.speeds)
+        args.variables = chain.parse_vars(args.var)
+        args.targets = parse_targets(args.target)
+        if args.segment <= 0 or args.cap < args.segment or args.settle < 0:
+            raise chain.PlanError(f"--segment {args.segment} --cap {args.cap} --settle {args.settle}: "
+                                  "need 0 < segment <= cap, settle >= 0")
+    except chain.PlanError as e:
+        p.error(str(e))
+    return args
+
+
+def main(argv=None):
+    args = arguments(argv)
+    try:
+        return Study(args).main()
+    except (harness.RunFailed, chain.PlanError, OSError, subprocess.CalledProcessError) as e:
+        harness.say(WHO, f"ERROR: {e}")
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
