@@ -22,33 +22,15 @@
 
 #include "metrics.h"
 
+#include "drum_run.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status;
-    std::string output;
-};
-
-Result shell(const std::string& command, const fs::path& dir)
-{
-    const std::string full = "cd '" + dir.string() + "' && " + command + " > run.out 2>&1";
-    const int status = std::system(full.c_str());
-    std::ifstream f(dir / "run.out");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return {status, ss.str()};
-}
-
-fs::path freshDir(const std::string& tag)
-{
-    const fs::path dir = fs::path(TEST_WORK_DIR) / tag;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    fs::create_directory_symlink(fs::path(SOURCE_DIR) / "inputs", dir / "inputs");
-    return dir;
-}
+using drum_test::freshDir;
+using drum_test::Result;
+using drum_test::shell;
 
 const std::string kMpirun = "mpirun --allow-run-as-root --oversubscribe -np 2 ";
 const std::string kSmall = " -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.03 -var dumpdt 0.01 -var name small";

@@ -15,33 +15,15 @@
 
 #include "metrics.h"
 
+#include "drum_run.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status;
-    std::string output;
-};
-
-Result shell(const std::string& command, const fs::path& dir, const std::string& out = "run.out")
-{
-    const std::string full = "cd '" + dir.string() + "' && " + command + " > " + out + " 2>&1";
-    const int status = std::system(full.c_str());
-    std::ifstream f(dir / out);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return {status, ss.str()};
-}
-
-fs::path freshDir(const std::string& tag)
-{
-    const fs::path dir = fs::path(TEST_WORK_DIR) / tag;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    fs::create_directory_symlink(fs::path(SOURCE_DIR) / "inputs", dir / "inputs");
-    return dir;
-}
+using drum_test::freshDir;
+using drum_test::Result;
+using drum_test::shell;
 
 std::string drumInput()
 {
