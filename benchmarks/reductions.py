@@ -61,8 +61,8 @@ def run(args):
 
 def sigmas(row, full):
     """Distances of a period's Hc, Hd and angle from the full scene's, in combined standard errors."""
-    se = lambda k: k.replace("_m", "_se_m") if k.endswith("_m") else k.replace("_deg", "_se_deg")  # noqa: E731
-    return [(row[k] - full[k]) / (row[se(k)] ** 2 + full[se(k)] ** 2) ** 0.5 for k in COMPARED]
+    se = {m["column"]: m["se_column"] for m in harness.drum_metric_table()}
+    return [(row[k] - full[k]) / (row[se[k]] ** 2 + full[se[k]] ** 2) ** 0.5 for k in COMPARED]
 
 
 def verdict(rows, full):

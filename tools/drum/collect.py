@@ -31,16 +31,10 @@ import chain  # noqa: E402
 WHO = "collect"
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 
-# The metrics tables: (header, value column, standard error column).
-METRICS = [
-    ("head Hh [m]", "Hh_m", "Hh_se_m"),
-    ("shoulder Hd [m]", "Hd_m", "Hd_se_m"),
-    ("centre of mass Hc [m]", "Hc_m", "Hc_se_m"),
-    ("drum force per bead [N]", "drum_force_N", "drum_force_se_N"),
-    ("angle of repose [deg]", "angle_deg", "angle_se_deg"),
-    ("layer thickness [m]", "layer_thickness_m", "layer_thickness_se_m"),
-    ("surface velocity [m/s]", "surface_velocity_mps", "surface_velocity_se_mps"),
-]
+def metrics():
+    """The metrics tables' columns: (header, value column, standard error column), from the
+    metric table of `drum_metrics metrics`."""
+    return [(f"{m['label']} [{m['unit']}]", m["column"], m["se_column"]) for m in harness.drum_metric_table()]
 
 
 def pm(value, se):
@@ -59,8 +53,8 @@ def steady(value):
 
 
 def metric_columns(rows):
-    """The METRICS present in `rows`, as harness.markdown columns."""
-    return [(h, (lambda r, v=v, s=s: pm(r[v], r.get(s))), None) for h, v, s in METRICS
+    """The metrics present in `rows`, as harness.markdown columns."""
+    return [(h, (lambda r, v=v, s=s: pm(r[v], r.get(s))), None) for h, v, s in metrics()
             if rows and all(v in r for r in rows)]
 
 

@@ -12,7 +12,7 @@
 //   drum_metrics table --out post/sweep post/drum_*rpm_average.csv
 //       the averages by column name, one row per run sorted by rpm: O.csv, O.md, O.png
 //   drum_metrics metrics
-//       the metric table as CSV (column,unit,description)
+//       the metric table as CSV (key,column,se_column,unit,label,description)
 //   drum_metrics compare a.vtp b.vtp
 #include <CLI/CLI.hpp>
 
@@ -373,12 +373,14 @@ int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip,
     return 0;
 }
 
-// The metric table as CSV: column,unit,description.
+// The metric table as CSV: key,column,se_column,unit,label,description (what
+// scripts and documents need to show a metric without listing it again).
 int listMetrics()
 {
-    std::printf("column,unit,description\n");
+    std::printf("key,column,se_column,unit,label,description\n");
     for (const drum::Metric& m : table())
-        std::printf("%s,%s,\"%s\"\n", m.column().c_str(), m.unit.c_str(), m.description.c_str());
+        std::printf("%s,%s,%s,%s,\"%s\",\"%s\"\n", m.key.c_str(), m.column().c_str(), m.seColumn().c_str(),
+                    m.unit.c_str(), m.label.c_str(), m.description.c_str());
     return 0;
 }
 
@@ -423,7 +425,7 @@ int main(int argc, char** argv)
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
     t->add_option("--out", out, "output prefix")->capture_default_str();
     t->add_option("files", files, "<prefix>_average.csv files")->required();
-    CLI::App* l = app.add_subcommand("metrics", "list the metrics (column, unit, description) as CSV");
+    CLI::App* l = app.add_subcommand("metrics", "list the metrics (key, columns, unit, label, description) as CSV");
     std::string fileA, fileB;
     CLI::App* c = app.add_subcommand("compare", "largest position and velocity differences of two snapshots (by bead id)");
     c->add_option("a", fileA, "first .vtp")->required()->check(CLI::ExistingFile);

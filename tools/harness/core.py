@@ -104,6 +104,13 @@ def machine():
             "liggghts": r.stdout if r.returncode == 0 and r.stdout else "?"}
 
 
+def drum_metric_table():
+    """The drum metrics as `drum_metrics metrics` lists them (key, column, se_column, unit, label,
+    description): scripts show metrics from this table instead of listing them again."""
+    from .tables import read_csv_text
+    return read_csv_text(tool("drum_metrics", "metrics"))
+
+
 def materials(path=None):
     """inputs/materials.in as {name: value}: its `variable NAME equal VALUE` lines."""
     path = Path(path) if path else REPO / "inputs" / "materials.in"
