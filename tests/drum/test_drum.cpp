@@ -181,7 +181,8 @@ TEST_F(SmallDrum, DrumMetricsWritesTheNamedColumns)
     r = shell(metrics + " metrics", dir);
     ASSERT_EQ(r.status, 0) << r.output;
     std::vector<std::string> columns;
-    for (const auto& row : readCsv(dir / "run.out").rows) columns.push_back(row.at(0));
+    // drum_metrics metrics: key,column,se_column,unit,label,description
+    for (const auto& row : readCsv(dir / "run.out").rows) columns.push_back(row.at(1));
     ASSERT_EQ(columns.size(), drum::metricTable().size());
     const Csv series = readCsv(dir / "cli_metrics.csv");
     ASSERT_EQ(series.rows.size(), 4u);  // steps 0, 1000, 2000, 3000
