@@ -75,10 +75,7 @@ def window_average(prefix, dt, rpm=RPM, skip=None, until=None, after_first=False
     first snapshot (the shared start state of a continued run)."""
     if after_first:
         skip = (harness.snapshots(prefix)[0][0] + 0.5) * dt
-    args = ["series", "--prefix", prefix, "--dt", dt, "--rpm", rpm, "--average", "all"]
-    args += ["--skip", skip] if skip is not None else []
-    args += ["--until", until] if until is not None else []
-    harness.tool("drum_metrics", *args)
+    harness.drum_series(prefix, dt, rpm, skip=skip, until=until, average="all")
     return harness.read_csv(f"{prefix}_average.csv")[0]
 
 

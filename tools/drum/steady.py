@@ -31,6 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 import chain  # noqa: E402
+import study  # noqa: E402
 
 WHO = "steady"
 DEFAULT_TARGETS = {"Hc": 3e-4, "angle": 0.3}  # [m], [deg]: the defaults
@@ -106,7 +107,7 @@ class Study:
         self.work = harness.REPO / "post" / args.name
         self.docs = Path(args.docs).resolve() / args.name
         self.settings = settings_of(args)
-        self.dt = float(args.variables.get("dt") or chain_default("dt"))
+        self.dt = float(args.variables.get("dt") or study.drum_default("dt"))
 
     def committed(self, rpm):
         p = self.docs / f"{rpm}rpm" / "run.json"
@@ -182,8 +183,7 @@ class Study:
         a = self.args
         out = self.docs / f"{rpm}rpm"
         out.mkdir(parents=True, exist_ok=True)
-        harness.tool("drum_metrics", "series", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm,
-                     "--batch-seconds", f"{revolution(rpm):.10g}", "--out", out / "series")
+        harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}")
         harness.tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", self.prefix(rpm), "--out", out / "picture.png")
         with open(restart, "rb") as src, gzip.open(out / "state.restart.gz", "wb", compresslevel=9) as dst:
             shutil.copyfileobj(src, dst)
@@ -201,8 +201,8 @@ class Study:
                "dt_s": self.dt, "settle_s": steady_from - (t_end - done["simulated_s"]), "average_s": averaged,
                "revolutions": averaged / revolution(rpm), "batches": average.get("batches", float("nan")),
                "done": outcome == "done", "cpu_hours": done["cpu_s"] / 3600}
-        row.update({k: v for k, v in average.items() if "_" in k and k not in ("steady_from_s",)
-                    and k.split("_")[0] not in ("rpm", "beads", "snapshots", "batches")})
+        for m in harness.drum_metric_table():
+            row[m["column"]], row[m["se_column"]] = average[m["column"]], average[m["se_column"]]
         table = self.docs.with_suffix(".csv")
         rows = [r for r in (harness.read_csv(table) if table.exists() else []) if r["rpm"] != rpm]
         rows = sorted(rows + [row], key=lambda r: r["rpm"])
@@ -233,11 +233,6 @@ class Study:
                 harness.say(WHO, f"{rpm} rpm took {(time.monotonic() - began) / 60:.1f} min")
             previous = rpm
         return 0
-
-
-def chain_default(name):
-    import study
-    return study.drum_default(name)
 
 
 def arguments(argv=None):

@@ -111,12 +111,12 @@ class Study:
         return log
 
     def metrics(self, s):
-        args = ["series", "--prefix", self.path(s.reads), "--dt", self.dt, "--rpm", s.rpm, "--out", self.path(s.out)]
         # snapshot times are step * dt: widen the bounds by a nanosecond so one on a bound counts
-        args += ["--skip", f"{s.skip - 1e-9:.10g}"] if s.skip is not None else []
-        args += ["--until", f"{s.until + 1e-9:.10g}"] if s.until is not None else []
-        args += ["--average", s.average] if s.average else []
-        self.path(s.out + "_metrics.txt").write_text(harness.tool("drum_metrics", *args))
+        text = harness.drum_series(self.path(s.reads), self.dt, s.rpm, out=self.path(s.out),
+                                   skip=None if s.skip is None else f"{s.skip - 1e-9:.10g}",
+                                   until=None if s.until is None else f"{s.until + 1e-9:.10g}",
+                                   average=s.average or None)
+        self.path(s.out + "_metrics.txt").write_text(text)
 
     def ramp_bands(self, run):
         """The ramp's snapshots with the drum speed the run recorded (interpolated to the

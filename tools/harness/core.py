@@ -104,6 +104,18 @@ def machine():
             "liggghts": r.stdout if r.returncode == 0 and r.stdout else "?"}
 
 
+def drum_series(prefix, dt, rpm, out=None, skip=None, until=None, average=None, batch_seconds=None):
+    """`drum_metrics series` on a run's snapshots (options left out when None); returns its
+    printed summary. It writes OUT_metrics.csv, OUT_average.csv and OUT_metrics.png (OUT:
+    `out`, or the prefix)."""
+    args = ["series", "--prefix", prefix, "--dt", dt, "--rpm", rpm]
+    for option, value in (("--out", out), ("--skip", skip), ("--until", until), ("--average", average),
+                          ("--batch-seconds", batch_seconds)):
+        if value is not None:
+            args += [option, value]
+    return tool("drum_metrics", *args)
+
+
 def drum_metric_table():
     """The drum metrics as `drum_metrics metrics` lists them (key, column, se_column, unit, label,
     description): scripts show metrics from this table instead of listing them again."""
