@@ -54,10 +54,12 @@ def sci(x):
 
 # --- the project's binaries ---------------------------------------------------------------------
 
-def stock_file(path, uniform=None):
+def stock_file(path, uniform=None, exact_dt=None):
     """The stock hooke/stiffness constants (`contact_law stock`) in `path`: Table 3.1 with the thesis
-    conventions, or en = et = `uniform` for every pair."""
+    conventions, or en = et = `uniform` for every pair; with `exact_dt` the exactRestitution
+    coefficients for that timestep."""
     args = ["stock"] + ([] if uniform is None else ["--uniform", uniform])
+    args += [] if exact_dt is None else ["--exact", "--dt", f"{exact_dt:.10g}"]
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(harness.tool("contact_law", *args))

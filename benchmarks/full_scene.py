@@ -45,9 +45,7 @@ def parser():
 
 def run(args):
     dt = common.dt_of(RATIO)
-    stock = harness.post("full_scene/stock.in")
-    stock.parent.mkdir(parents=True, exist_ok=True)
-    stock.write_text(harness.tool("contact_law", "stock", "--exact", "--dt", f"{dt:.10g}"))
+    stock = common.stock_file(harness.post("full_scene/stock.in"), exact_dt=dt)
     names = [v.strip() for v in args.variants.split(",")]
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
