@@ -28,6 +28,13 @@ class Plan(unittest.TestCase):
         c = {7: committed(None, "a"), 14: committed("a", "b2"), 21: committed("b1", "c"), 28: committed("c", "d")}
         self.assertEqual(steady.plan([7, 14, 21, 28], c, SETTINGS), [(7, True), (14, True), (21, False), (28, False)])
 
+    def test_the_first_speed_is_done_only_from_the_given_start_state(self):
+        c = {21: committed("shipped", "a"), 28: committed("a", "b")}
+        self.assertEqual(steady.plan([21, 28], c, SETTINGS, first_state="shipped"), [(21, True), (28, True)])
+        # the same speeds from the grid (or from another shipped state) are not this study's
+        self.assertEqual(steady.plan([21, 28], c, SETTINGS), [(21, False), (28, False)])
+        self.assertEqual(steady.plan([21, 28], c, SETTINGS, first_state="other"), [(21, False), (28, False)])
+
     def test_other_settings_stop_the_study_naming_them(self):
         other = dict(SETTINGS, segment=0.5)
         with self.assertRaisesRegex(chain.PlanError, r"14 rpm is committed with other settings \(segment\)"):

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The thesis study to steady state: each speed of the chain runs until its time averages reach target standard errors, and is committed with its end state as soon as it is done.
 
-The chain (section 3.4.2): the slowest speed starts from the grid, each faster one from the
-committed end state of the one before. A speed runs in segments of --segment simulated seconds
+The chain (section 3.4.2): the slowest speed starts from the grid (or --start-state), each
+faster one from the committed end state of the one before. A speed runs in segments of --segment simulated seconds
 (restart-chained, so an interrupted speed resumes from its last segment); after each segment
 `drum_metrics steady` decides: the metrics have settled (MSER) and the averages after the steady
 start, by batch means over whole drum revolutions, have standard errors within --target (default
@@ -74,12 +74,13 @@ def sha256(path):
     return h.hexdigest()
 
 
-def plan(speeds, committed, settings, force=False):
+def plan(speeds, committed, settings, force=False, first_state=None):
     """Which speeds to run. `committed`: {rpm: its run.json or None}. A speed counts as done if
     committed with these settings and started from the state its predecessor has now (the start
-    state's hash), so redoing one speed redoes every faster one. A speed committed with other
+    state's hash; for the first speed `first_state`, the hash of --start-state, None for the
+    grid), so redoing one speed redoes every faster one. A speed committed with other
     settings stops the study (PlanError naming it) unless `force`. Returns [(rpm, done)]."""
-    out, previous_state = [], None
+    out, previous_state = [], first_state
     for rpm in speeds:
         c = committed.get(rpm)
         if c is not None and c["settings"] != settings and not force:
@@ -101,6 +102,21 @@ def verdict(row, simulated, cap):
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
 
+def commit(message, *paths, tries=10):
+    """Commits these paths only (whatever else is staged stays staged); retries while another git
+    process holds the index, so a study can run beside other work in the same repository."""
+    for k in range(tries):
+        add = subprocess.run(["git", "add", *map(str, paths)], cwd=harness.REPO, capture_output=True, text=True)
+        r = add if add.returncode else subprocess.run(
+            ["git", "commit", "-q", "-m", message, "--", *map(str, paths)], cwd=harness.REPO,
+            capture_output=True, text=True)
+        if r.returncode == 0:
+            return
+        if "index.lock" not in r.stderr or k == tries - 1:
+            raise subprocess.CalledProcessError(r.returncode, r.args, r.stdout, r.stderr)
+        time.sleep(5)
+
+
 class Study:
     def __init__(self, args):
         self.args = args
@@ -108,6 +124,20 @@ class Study:
         self.docs = Path(args.docs).resolve() / args.name
         self.settings = settings_of(args)
         self.dt = float(args.variables.get("dt") or study.drum_default("dt"))
+
+    def first_state(self):
+        """--start-state unpacked into post/ (or None: the grid) and its hash (of the file as given)."""
+        given = self.args.start_state
+        if not given:
+            return None, None
+        given = Path(given).resolve()
+        if given.suffix != ".gz":
+            return given, sha256(given)
+        plain = self.work / ("start_" + given.stem)
+        plain.parent.mkdir(parents=True, exist_ok=True)
+        with gzip.open(given, "rb") as src, open(plain, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        return plain, sha256(given)
 
     def committed(self, rpm):
         p = self.docs / f"{rpm}rpm" / "run.json"
@@ -208,16 +238,15 @@ class Study:
         rows = sorted(rows + [row], key=lambda r: r["rpm"])
         harness.write_csv(table, rows, TABLE + [k for k in row if k not in TABLE])
         if a.commit:
-            subprocess.run(["git", "add", str(out), str(table)], cwd=harness.REPO, check=True)
-            subprocess.run(["git", "commit", "-q", "-m", f"Drum study {a.name}: {rpm} rpm ({outcome}, "
-                            f"{done['simulated_s']:g} s simulated)"], cwd=harness.REPO, check=True)
+            commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table)
         harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
                          f"{' and committed' if a.commit else ''}")
 
     def main(self):
         a = self.args
         self.command = "tools/drum/steady.py " + shlex.join(sys.argv[1:])
-        steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force)
+        first, first_sha = self.first_state()
+        steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force, first_sha)
         for rpm, done in steps:
             harness.say(WHO, f"plan: {rpm} rpm: {'committed' if done else 'to run'}")
         if a.dry_run:
@@ -225,8 +254,8 @@ class Study:
         previous = None
         for rpm, done in steps:
             if not done:
-                start = self.state(previous) if previous else None
-                start_sha = self.committed(previous)["state_sha256"] if previous else None
+                start = self.state(previous) if previous else first
+                start_sha = self.committed(previous)["state_sha256"] if previous else first_sha
                 began = time.monotonic()
                 outcome, record, restart = self.run_speed(rpm, start)
                 self.finish(rpm, outcome, record, restart, start_sha)
@@ -240,6 +269,9 @@ def arguments(argv=None):
     p.add_argument("--name", default="study_thesis", help="docs/drum/NAME/ and post/NAME/ (default: %(default)s)")
     p.add_argument("--speeds", default="7,14,21,28,35,42,49,56,63", help="rpm, ascending (default: %(default)s)")
     p.add_argument("--period", default="0.024", help="axial period [m] (default: %(default)s, the thesis scene)")
+    p.add_argument("--start-state", metavar="RESTART[.gz]",
+                   help="the first speed starts from this state instead of the grid (e.g. the shipped "
+                        "inputs/drum_L24_21rpm.restart.gz)")
     p.add_argument("--segment", type=float, default=1.0, help="simulated seconds per segment (default: %(default)s)")
     p.add_argument("--settle", type=float, default=2.0,
                    help="extra seconds of the first segment of a grid start (default: %(default)s)")
