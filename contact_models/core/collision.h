@@ -1,0 +1,218 @@
+// `exactCollision on`: every single binary collision restitutes what the
+// continuous law restitutes, whatever the phase at which it starts within a
+// step and whatever the timestep (below the stability limit).
+//
+// The error of a single collision comes from three places, each removed here:
+//  - inside the contact the leapfrog map of the linear law is not the exact
+//    flow over a step. The linear law F = kStep x_n + cStep v_{n-1/2} (per
+//    unit mass) whose leapfrog map IS the exact flow exists in closed form:
+//    two samples of a damped oscillator obey x_{n+1} = a x_n - b x_{n-1}
+//    with a = 2 e^(-c dt/2) cos(w dt), b = e^(-c dt), so
+//    kStep = (1 + b - a) / dt^2 and cStep = (1 - b) / dt;
+//  - the contact starts between two steps: at its first overlapping step
+//    the overlap x1 and the approach rate v0 give the time since first
+//    touch, s = x1 / v0 (free flight), and the continuous contact X from
+//    (0, v0) is at X(s), not x1, as the flight felt no force. The first
+//    force puts the next sample on X(s + dt); the second step takes X(s) as
+//    its previous sample (one number kept for one step);
+//  - it ends between two steps: the samples give the continuous state, and
+//    when the overlap (or, with limitForce, the force) reaches zero within the
+//    coming step at s_e, the last force makes the rate after the step the
+//    exit rate X'(s_e).
+// A contact between two steps is otherwise untouched: two multiplications
+// and a comparison per step more than the plain law; the start and end need
+// a few transcendental evaluations, once per contact.
+//
+// Per unit mass; the LIGGGHTS model multiplies by meff. State per contact:
+// its phase (fresh, touching, ended), kept in the contact history.
+#pragma once
+
+#include <cmath>
+
+namespace viscoelastic {
+
+// Position and rate of a free damped oscillator x'' = -k x - c x'.
+struct Motion {
+    double x, u;
+};
+
+struct FreeOscillator {
+    double k = 0, c = 0, lambda = 0, omega = 0;  // omega: damped frequency, sqrt(k - c^2/4)
+
+    FreeOscillator() = default;
+    FreeOscillator(double k_, double c_) : k(k_), c(c_), lambda(0.5 * c_), omega(std::sqrt(k_ - 0.25 * c_ * c_)) {}
+
+    // The motion tau later (tau may be negative).
+    Motion after(Motion m, double tau) const
+    {
+        const double e = std::exp(-lambda * tau), co = std::cos(omega * tau), si = std::sin(omega * tau) / omega;
+        return {e * (m.x * co + (m.u + lambda * m.x) * si), e * (m.u * co - (lambda * m.u + k * m.x) * si)};
+    }
+    // What ends a contact: the overlap, or with limitForce the force k x + c u.
+    double ending(Motion m, bool force) const { return force ? k * m.x + c * m.u : m.x; }
+};
+
+// One oscillator at one timestep: everything a contact needs per step.
+struct StepLaw {
+    FreeOscillator o;
+    double dt = 0;
+    bool forceEnds = false;     // limitForce: the contact ends when k x + c u reaches 0
+    double kStep = 0, cStep = 0;  // the leapfrog-exact law inside the contact
+    double uX = 0, uV = 0;      // continuous rate at a sample: u = uX x_n + uV v_{n-1/2}
+    double endX = 0, endV = 0;  // what ends the contact, one step on: endX x_n + endV v_{n-1/2}
+};
+
+inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
+{
+    StepLaw s;
+    s.o = FreeOscillator(k, c);
+    s.dt = dt, s.forceEnds = forceEnds;
+    const double e = std::exp(-s.o.lambda * dt), co = std::cos(s.o.omega * dt), si = std::sin(s.o.omega * dt);
+    const double a = 2.0 * e * co, b = e * e;
+    s.kStep = (1.0 + b - a) / (dt * dt);
+    s.cStep = (1.0 - b) / dt;
+    // The sample before is x_n - dt v; the oscillator through both samples
+    // has, at x_n, the rate u = -lambda x_n + omega (x_n cos - x_{n-1} e) / sin.
+    s.uX = -s.o.lambda + s.o.omega * (co - e) / si;
+    s.uV = s.o.omega * e * dt / si;
+    // One step on, by linearity: the motion from (1, uX) and from (0, uV).
+    const Motion fromX = s.o.after({1.0, s.uX}, dt), fromV = s.o.after({0.0, s.uV}, dt);
+    s.endX = s.o.ending(fromX, forceEnds);
+    s.endV = s.o.ending(fromV, forceEnds);
+    return s;
+}
+
+enum class CollisionPhase { fresh = 0, touching = 1, ended = 2 };
+
+// What a contact keeps between steps.
+struct CollisionState {
+    CollisionPhase phase = CollisionPhase::fresh;
+    // After the first step: the continuous overlap at that step minus the
+    // actual one (the free flight into the contact felt no force); the
+    // second step takes it as its previous sample.
+    double previousOffset = 0;
+};
+
+struct CollisionStep {
+    double force = 0;        // per unit mass, along the normal (positive: repulsive)
+    double sinceStart = -1;  // first step: time since first touch [s] (else < 0)
+    double endsAfter = -1;   // last step: time from this step to the end of the contact [s] (else < 0)
+};
+
+namespace detail {
+
+// tau in [lo, hi] with f(tau) = 0, f(lo) and f(hi) of opposite signs or zero:
+// secant steps kept inside the bracket, every third step a bisection.
+template <class F>
+double bracketedRoot(F f, double lo, double hi)
+{
+    double flo = f(lo), fhi = f(hi);
+    if (flo == 0.0) return lo;
+    if (fhi == 0.0) return hi;
+    for (int it = 0; it < 60 && hi - lo > 1e-14 * (std::fabs(lo) + std::fabs(hi)); ++it) {
+        double t = lo - flo * (hi - lo) / (fhi - flo);
+        if (!(t > lo && t < hi) || it % 3 == 2) t = 0.5 * (lo + hi);
+        const double ft = f(t);
+        if (ft == 0.0) return t;
+        if ((ft > 0) == (flo > 0)) lo = t, flo = ft;
+        else hi = t, fhi = ft;
+    }
+    return 0.5 * (lo + hi);
+}
+
+}  // namespace detail
+
+// A contact first seen with overlap x1 and approach rate v0 touched x1 / v0
+// ago: before this step it flew freely. More than this bound of a step ago
+// means it did not just touch (a contact created overlapping, at the start of
+// a run or after a restart without contact history): it is then taken as
+// under way, uncorrected.
+constexpr double kFreshTouchSteps = 1.5;
+
+// One step of a contact under `exactCollision`: x the overlap at this step,
+// v the overlap rate at the half step before (positive while approaching).
+inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v)
+{
+    const double dt = law.dt;
+    CollisionStep r;
+    if (state.phase == CollisionPhase::ended) {
+        if (!(v > 0.0)) return r;  // the continuous contact is over: no force while the overlap closes
+        state.phase = CollisionPhase::fresh;  // approaching again: a new contact
+    }
+    Motion now;  // the continuous motion at this step
+    if (state.phase == CollisionPhase::fresh && v > 0.0 && x <= kFreshTouchSteps * v * dt) {
+        r.sinceStart = x / v;
+        now = law.o.after({0.0, v}, r.sinceStart);
+        state.previousOffset = now.x - x;
+    } else {
+        // Under way: the previous sample and this one define the motion. The
+        // common case costs two products and a comparison over the plain law.
+        const double vUsed = v - state.previousOffset / dt;
+        state.previousOffset = 0.0;
+        if (state.phase == CollisionPhase::touching && law.endX * x + law.endV * vUsed > 0.0) {
+            r.force = (v - vUsed) / dt + law.kStep * x + law.cStep * vUsed;
+            return r;
+        }
+        now = {x, law.uX * x + law.uV * vUsed};
+    }
+    state.phase = CollisionPhase::touching;
+    const auto ending = [&](double tau) { return law.o.ending(law.o.after(now, tau), law.forceEnds); };
+    if (ending(dt) > 0.0) {  // on along the continuous motion: the next sample lies on it
+        const double next = law.o.after(now, dt).x;
+        r.force = (v - (next - x) / dt) / dt;
+        return r;
+    }
+    // The contact ends within this step: leave at the continuous exit rate.
+    const double tau = ending(0.0) <= 0.0 ? 0.0 : detail::bracketedRoot(ending, 0.0, dt);
+    state.phase = CollisionPhase::ended;
+    r.endsAfter = tau;
+    r.force = (v - law.o.after(now, tau).u) / dt;
+    return r;
+}
+
+// What one continuous collision does, from first touch with unit approach
+// rate: restitution, the time the overlap lasts and the time the force lasts
+// (with limitForce the bodies still overlap, force-free, for a while after
+// the force ends).
+struct ContinuousCollision {
+    double restitution, duration, forceDuration;
+};
+
+inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool limitForce)
+{
+    const double half = 3.14159265358979323846 / o.omega;  // the overlap's zero: exactly tc
+    if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
+    const auto force = [&](double t) { return o.ending(o.after({0.0, 1.0}, t), true); };
+    const double tf = detail::bracketedRoot(force, 0.5 * half, half);  // after the peak overlap
+    const Motion m = o.after({0.0, 1.0}, tf);
+    return {-m.u, tf + m.x / -m.u, tf};
+}
+
+// The single collision as LIGGGHTS integrates it under exactCollision: the
+// first overlap phase * v0 * dt (v0 = 1), leapfrog steps with
+// exactCollisionStep until the overlap is gone. `followed` is the duration
+// of the continuous contact the steps followed: first touch to the end of
+// its force.
+struct SteppedCollision {
+    double restitution = 0, followed = 0;
+    int steps = 0;
+};
+
+inline SteppedCollision exactCollisionAtPhase(const StepLaw& law, double phase)
+{
+    CollisionState state;
+    double x = phase * law.dt, v = 1.0, t = 0;
+    SteppedCollision r;
+    while (x > 0.0 && r.steps < 100000) {
+        const CollisionStep s = exactCollisionStep(law, state, x, v);
+        if (s.sinceStart >= 0.0) t = s.sinceStart;  // the contact began s before this step
+        if (s.endsAfter >= 0.0) r.followed = t + r.steps * law.dt + s.endsAfter;
+        v -= law.dt * s.force;
+        x += law.dt * v;
+        ++r.steps;
+    }
+    r.restitution = -v;
+    return r;
+}
+
+}  // namespace viscoelastic

@@ -1,0 +1,114 @@
+// exactCollision (core/collision.h): every single collision, whatever its
+// start phase and timestep, restitutes what the continuous law restitutes.
+// The scheme is exact in exact arithmetic, so the tolerances are round-off
+// (1e-9 relative, against errors of 1e-2 to 1e-1 of the plain law, which the
+// same tests measure so that they can tell the two apart).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/collision.h"
+#include "core/discrete.h"
+#include "core/pournin.h"
+#include "core/restitution.h"
+
+using namespace viscoelastic;
+
+namespace {
+
+constexpr double kTc = 1e-4;
+
+FreeOscillator pournin(double en) { return FreeOscillator(pourninOscillator(kTc, std::log(en)).k,
+                                                          pourninOscillator(kTc, std::log(en)).c); }
+
+// Start phases drawn at random (not a grid that could contain a special one).
+std::vector<double> randomPhases(int n, unsigned seed)
+{
+    std::mt19937 g(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<double> p;
+    for (int i = 0; i < n; ++i) p.push_back(1.0 - u(g));  // (0, 1]
+    return p;
+}
+
+}  // namespace
+
+TEST(ExactCollision, ContinuousCollisionIsPourninAndSchwagerPoeschel)
+{
+    // The continuous outcome by root finding vs the closed forms (independent).
+    for (double en : {0.05, 0.3, 0.46, 0.56, 0.9, 1.0}) {
+        const ContinuousCollision off = continuousCollision(pournin(en), false);
+        EXPECT_NEAR(off.restitution, en, 1e-12);
+        EXPECT_NEAR(off.duration, kTc, 1e-12 * kTc);
+        if (en < 1.0) {
+            const ContinuousCollision on = continuousCollision(pournin(en), true);
+            EXPECT_NEAR(on.restitution, continuousRestitution(kTc, en, true), 1e-10) << "en " << en;
+            EXPECT_LT(on.duration, kTc);
+        }
+    }
+}
+
+TEST(ExactCollision, EverySingleCollisionRestitutesTheContinuousLaw)
+{
+    double plainWorst = 0.0;
+    int cases = 0;
+    for (double ratio : {3.7, 5.0, 7.3, 10.0, 21.4, 81.0}) {
+        const double dt = kTc / ratio;
+        for (double en : {0.05, 0.3, 0.46, 0.56, 0.9, 1.0})
+            for (bool limitForce : {false, true}) {
+                const FreeOscillator o = pournin(en);
+                const ContinuousCollision want = continuousCollision(o, limitForce);
+                const StepLaw law = stepLaw(o.k, o.c, dt, limitForce);
+                for (double phase : randomPhases(40, 17u + cases)) {
+                    const SteppedCollision got = exactCollisionAtPhase(law, phase);
+                    ASSERT_NEAR(got.restitution, want.restitution, 1e-9 * want.restitution)
+                        << "tc/dt " << ratio << " en " << en << " limitForce " << limitForce << " phase " << phase;
+                    ASSERT_NEAR(got.followed, want.forceDuration, 1e-9 * kTc);
+                    const double plain = discreteCollisionAtPhase({o.k, o.c, 0.0, 0.0}, dt, limitForce, phase)
+                                             .outcome.restitution;
+                    plainWorst = std::max(plainWorst, std::fabs(plain / want.restitution - 1.0));
+                }
+                ++cases;
+            }
+    }
+    // the plain law scatters by several per cent over phases at these steps
+    EXPECT_GT(plainWorst, 0.05);
+}
+
+TEST(ExactCollision, LeapfrogOfTheStepLawIsTheExactFlow)
+{
+    // Inside a contact: samples of one continuous motion stay on it.
+    const FreeOscillator o = pournin(0.3);
+    const double dt = kTc / 6.3;
+    const StepLaw law = stepLaw(o.k, o.c, dt, false);
+    const Motion m0{2e-6, 0.4};
+    double x = m0.x, v = (m0.x - o.after(m0, -dt).x) / dt;
+    for (int n = 1; n <= 4; ++n) {
+        v -= dt * (law.kStep * x + law.cStep * v);
+        x += dt * v;
+        EXPECT_NEAR(x, o.after(m0, n * dt).x, 1e-12 * m0.x);
+    }
+    // and the rate it reconstructs at a sample is the continuous one
+    const Motion at = o.after(m0, 4 * dt);
+    EXPECT_NEAR(law.uX * x + law.uV * v, at.u, 1e-10 * std::fabs(at.u));
+}
+
+TEST(ExactCollision, ContactFoundOverlappingIsTakenAsUnderWay)
+{
+    // Deeper than a step of free flight: no start correction, the plain
+    // step-exact law from the two samples it has.
+    const FreeOscillator o = pournin(0.56);
+    const double dt = kTc / 10;
+    const StepLaw law = stepLaw(o.k, o.c, dt, false);
+    CollisionState fresh, underWay;
+    underWay.phase = CollisionPhase::touching;
+    const double x = 3.0 * 0.1 * dt, v = 0.1;
+    const CollisionStep a = exactCollisionStep(law, fresh, x, v), b = exactCollisionStep(law, underWay, x, v);
+    EXPECT_LT(a.sinceStart, 0.0);
+    EXPECT_NEAR(a.force, b.force, 1e-9 * std::fabs(b.force));
+    EXPECT_NEAR(b.force, law.kStep * x + law.cStep * v, 1e-12 * std::fabs(b.force));
+    // within a step of free flight it is a start
+    CollisionState s;
+    EXPECT_NEAR(exactCollisionStep(law, s, 0.4 * v * dt, v).sinceStart, 0.4 * dt, 1e-15);
+}
