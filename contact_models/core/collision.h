@@ -28,6 +28,10 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
+
+#include "exact.h"
+#include "pournin.h"
 
 namespace viscoelastic {
 
@@ -183,35 +187,107 @@ inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool lim
     const double half = 3.14159265358979323846 / o.omega;  // the overlap's zero: exactly tc
     if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
     const auto force = [&](double t) { return o.ending(o.after({0.0, 1.0}, t), true); };
-    const double tf = detail::bracketedRoot(force, 0.5 * half, half);  // after the peak overlap
+    // the force k x + c u turns negative after the peak overlap (u < 0), before x returns to 0
+    const double peak = std::atan2(o.omega, o.lambda) / o.omega;
+    const double tf = detail::bracketedRoot(force, peak, half);
     const Motion m = o.after({0.0, 1.0}, tf);
     return {-m.u, tf + m.x / -m.u, tf};
 }
 
+// The tangential spring of a contact under exactCollision: pournin's xi and
+// contact-point rate w (the same vector algebra for xi as the normal's x).
+// Returns the acceleration of w per step (the tangential force per unit
+// tangential mass) and sets xi. First step (normal.sinceStart >= 0): the
+// spring the continuous contact has after sinceStart, from (0, w) (the free
+// flight's rate), and the force that puts the next sample on it; last step
+// (normal.endsAfter >= 0): the force that leaves at the continuous rate at
+// the end; otherwise the step-exact law. Sticking: the Coulomb cap is the
+// caller's.
+template <class V>
+V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, const V& w)
+{
+    const double dt = law.dt;
+    if (normal.sinceStart >= 0.0) {
+        const double s = normal.sinceStart;
+        xi = w * law.o.after({0.0, 1.0}, s).x;
+        const V next = w * law.o.after({0.0, 1.0}, s + dt).x;
+        return ((next - xi) / dt - w) / dt;
+    }
+    if (normal.endsAfter >= 0.0) {
+        // the motion through this sample and the one before, per component
+        const V rate = law.uX * xi + law.uV * w;
+        const double tau = normal.endsAfter;
+        const double e = std::exp(-law.o.lambda * tau), co = std::cos(law.o.omega * tau),
+                     si = std::sin(law.o.omega * tau) / law.o.omega;
+        const V exit = e * (rate * co - (law.o.lambda * rate + law.o.k * xi) * si);
+        return (exit - w) / dt;
+    }
+    return -(law.kStep * xi + law.cStep * w);
+}
+
+// The oscillators whose continuous collision restitutes en and lasts tc
+// (overlap), and restitutes et while sticking. Without limitForce those are
+// Pournin's (Eq. 3.22-3.25); with it the force ends early, so (tc', en') are
+// solved for en and tc, and the tangential oscillator lasts as long as the
+// force. Normal per unit meff, tangential per unit tangential mass.
+// nullopt: en below what a cut contact restitutes (limitForce).
+struct CollisionOscillators {
+    FreeOscillator normal, tangential;
+};
+
+inline std::optional<CollisionOscillators> exactCollisionOscillators(const ContactParameters& p, bool limitForce)
+{
+    const auto pair = [](const Oscillator& n) { return FreeOscillator(n.k, n.c); };
+    if (!limitForce || p.en >= 1.0) {
+        const Oscillator t = pourninOscillator(p.tc, std::log(p.et));
+        return CollisionOscillators{pair(pourninOscillator(p.tc, std::log(p.en))), pair(t)};
+    }
+    // The cut law's restitution depends on en' only (time scales out): solve
+    // it, then scale tc' so that the overlap lasts tc. Pournin's oscillator
+    // stays underdamped, and its cut restitution falls to about 0.14 only.
+    const auto cut = [](double lnE) {
+        const Oscillator o = pourninOscillator(1.0, lnE);
+        return continuousCollision(FreeOscillator(o.k, o.c), true);
+    };
+    const double lo = std::log(1e-12);
+    if (!(cut(lo).restitution < p.en)) return std::nullopt;
+    const double lnE = detail::bracketedRoot([&](double z) { return cut(z).restitution - p.en; }, lo, std::log(p.en));
+    const FreeOscillator normal = pair(pourninOscillator(p.tc / cut(lnE).duration, lnE));
+    // Sticking, the spring runs while the force does: Pournin's tangential
+    // oscillator with the force's duration in place of tc restitutes et.
+    const double tf = continuousCollision(normal, true).forceDuration;
+    return CollisionOscillators{normal, pair(pourninOscillator(tf, std::log(p.et)))};
+}
+
 // The single collision as LIGGGHTS integrates it under exactCollision: the
-// first overlap phase * v0 * dt (v0 = 1), leapfrog steps with
-// exactCollisionStep until the overlap is gone. `followed` is the duration
-// of the continuous contact the steps followed: first touch to the end of
-// its force.
+// first overlap phase * v0 * dt (v0 = 1, tangential rate 1, sticking), leapfrog
+// steps until the overlap is gone. `followed` is the duration of the
+// continuous contact the steps followed: first touch to the end of its force.
 struct SteppedCollision {
-    double restitution = 0, followed = 0;
+    double restitution = 0, tangentialRestitution = 0, followed = 0;
     int steps = 0;
 };
 
-inline SteppedCollision exactCollisionAtPhase(const StepLaw& law, double phase)
+inline SteppedCollision exactCollisionAtPhase(const StepLaw& normal, const StepLaw& tangential, double phase)
 {
     CollisionState state;
-    double x = phase * law.dt, v = 1.0, t = 0;
+    double x = phase * normal.dt, v = 1.0, t = 0, xi = 0.0, w = 1.0;
+    const double dt = normal.dt;
     SteppedCollision r;
     while (x > 0.0 && r.steps < 100000) {
-        const CollisionStep s = exactCollisionStep(law, state, x, v);
+        const bool over = state.phase == CollisionPhase::ended;
+        const CollisionStep s = exactCollisionStep(normal, state, x, v);
         if (s.sinceStart >= 0.0) t = s.sinceStart;  // the contact began s before this step
-        if (s.endsAfter >= 0.0) r.followed = t + r.steps * law.dt + s.endsAfter;
-        v -= law.dt * s.force;
-        x += law.dt * v;
+        if (s.endsAfter >= 0.0) r.followed = t + r.steps * dt + s.endsAfter;
+        xi += dt * w;
+        const double a = over ? 0.0 : exactTangentialStep(tangential, s, xi, w);
+        w += dt * a;
+        v -= dt * s.force;
+        x += dt * v;
         ++r.steps;
     }
     r.restitution = -v;
+    r.tangentialRestitution = -w;
     return r;
 }
 
