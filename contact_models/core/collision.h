@@ -31,6 +31,7 @@
 #include <optional>
 
 #include "exact.h"
+#include "law.h"
 #include "pournin.h"
 
 namespace viscoelastic {
@@ -225,12 +226,43 @@ V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, co
     return -(law.kStep * xi + law.cStep * w);
 }
 
+// `tangential pournin` under exactCollision: law.h's pourninTangentialForce
+// with the first and last steps of exactTangentialStep and the step-exact
+// law between. `mt` is the contact's tangential mass, `law` the tangential
+// oscillator per unit mt, `normal` what the normal step decided.
+inline Vec3 pourninExactTangentialForce(TangentialState& s, const Vec3& n, const Vec3& vt, double mt,
+                                        const StepLaw& law, const CollisionStep& normal, double limit, bool advance)
+{
+    TangentialState t = s;
+    if (t.normal.squaredNorm() > 0.0) t.xi = rotateWithNormal(t.xi, t.normal, n);
+    t.xi += vt * law.dt;
+    t.xi -= t.xi.dot(n) * n;
+    t.normal = n;
+    Vec3 f = mt * exactTangentialStep(law, normal, t.xi, vt);
+    const double fmag = f.norm();
+    if (fmag > limit) {
+        f *= (fmag > 0.0 ? limit / fmag : 0.0);
+        t.xi = -(f / mt + law.cStep * vt) / law.kStep;  // the spring that gives the capped force
+    }
+    if (advance) s = t;
+    return f;
+}
+
 // The oscillators whose continuous collision restitutes en and lasts tc
 // (overlap), and restitutes et while sticking. Without limitForce those are
 // Pournin's (Eq. 3.22-3.25); with it the force ends early, so (tc', en') are
 // solved for en and tc, and the tangential oscillator lasts as long as the
 // force. Normal per unit meff, tangential per unit tangential mass.
 // nullopt: en below what a cut contact restitutes (limitForce).
+// The least restitution a cut contact of Pournin's form reaches: its value
+// as en' -> 0 (still underdamped), about 0.1365.
+constexpr double kLeastEnPrime = 1e-12;
+inline double leastCutRestitution()
+{
+    const Oscillator o = pourninOscillator(1.0, std::log(kLeastEnPrime));
+    return continuousCollision(FreeOscillator(o.k, o.c), true).restitution;
+}
+
 struct CollisionOscillators {
     FreeOscillator normal, tangential;
 };
@@ -249,7 +281,7 @@ inline std::optional<CollisionOscillators> exactCollisionOscillators(const Conta
         const Oscillator o = pourninOscillator(1.0, lnE);
         return continuousCollision(FreeOscillator(o.k, o.c), true);
     };
-    const double lo = std::log(1e-12);
+    const double lo = std::log(kLeastEnPrime);
     if (!(cut(lo).restitution < p.en)) return std::nullopt;
     const double lnE = detail::bracketedRoot([&](double z) { return cut(z).restitution - p.en; }, lo, std::log(p.en));
     const FreeOscillator normal = pair(pourninOscillator(p.tc / cut(lnE).duration, lnE));

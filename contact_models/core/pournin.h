@@ -14,6 +14,17 @@ constexpr double kPi = 3.14159265358979323846;
 // wall: (1/meff + R1^2/I1 + R2^2/I2)^-1 = 2/7 meff.
 constexpr double kTangentialMassRatio = 2.0 / 7.0;
 
+// The tangential mass a contact point has when its force acts at lever arms
+// cri, crj of solid spheres (I = 2/5 m r^2): 1/m_t = 1/meff + cri^2/Ii +
+// crj^2/Ij. At cr = r it is 2/7 meff; LIGGGHTS' lever arm r - overlap/2 makes
+// it a little larger. A wall: mj = 0.
+inline double contactPointMass(double meff, double mi, double ri, double cri, double mj, double rj, double crj)
+{
+    double inverse = 1.0 / meff + cri * cri / (0.4 * mi * ri * ri);
+    if (mj > 0.0) inverse += crj * crj / (0.4 * mj * rj * rj);
+    return 1.0 / inverse;
+}
+
 // Material data of one type pair, as given in the input script.
 struct ContactParameters {
     double tc;  // contact duration [s]

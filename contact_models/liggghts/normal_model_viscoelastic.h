@@ -10,6 +10,7 @@ NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
 
 #include "contact_models.h"
 #include "normal_model_base.h"
+#include "core/collision.h"
 #include "core/law.h"
 #include "type_pair_table.h"
 
@@ -34,14 +35,33 @@ public:
         // Coefficients for which a binary collision integrated at this
         // timestep restitutes en, et and lasts tc (core/exact.h).
         settings.registerOnOff("exactRestitution", exactRestitution, false);
+        // Every single collision restitutes en, et and lasts tc, whatever its
+        // start within a step (core/collision.h).
+        settings.registerOnOff("exactCollision", exactCollision, false);
     }
 
-    void postSettings(IContactHistorySetup*, ContactModelBase*) {}
+    void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
+    {
+        // exactCollision's per-contact state, and what this step decided for
+        // `tangential pournin` (which finds it under "viscoelastic_collision").
+        // Only then: the contact history of restart files stays as it was.
+        if (!exactCollision) return;
+        history_offset = hsetup->add_history_value("viscoelastic_phase", "0");
+        hsetup->add_history_value("viscoelastic_offset", "0");
+        hsetup->add_history_value("viscoelastic_since_start", "0");
+        hsetup->add_history_value("viscoelastic_ends_after", "0");
+        cmb->add_history_offset("viscoelastic_collision", history_offset);
+    }
 
     void connectToProperties(PropertyRegistry& registry)
     {
+        const char* caller = cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic";
+        if (exactCollision && cmb->get_history_offset("pournin_xi") < 0)
+            error->all(FLERR, (std::string(caller) + ": exactCollision on needs `tangential pournin` (it "
+                               "corrects the tangential spring at the start and end of each contact)").c_str());
         table.load(lmp, registry, registry.max_type(), limitForce, exactRestitution,
-                   cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic");
+                   caller);
+        if (exactCollision) table.loadCollision(lmp, limitForce, wallMassAsParticle, exactRestitution, caller, cmb);
     }
 
     double stressStrainExponent() { return 1.0; }
@@ -51,7 +71,8 @@ public:
         if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
         const double meff = (sidata.is_wall && wallMassAsParticle) ? 0.5 * sidata.meff : sidata.meff;
         const viscoelastic::Coefficients c = viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), meff);
-        const double Fn = viscoelastic::normalForce(c, sidata.deltan, -sidata.vn, limitForce);
+        const double Fn = exactCollision ? collisionForce(sidata, meff)
+                                         : viscoelastic::normalForce(c, sidata.deltan, -sidata.vn, limitForce);
 
         sidata.Fn = Fn;
         sidata.kn = c.kn;
@@ -70,12 +91,31 @@ public:
     void surfacesClose(SurfacesCloseData& scdata, ForceData&, ForceData&)
     {
         if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
+        if (!exactCollision || !scdata.contact_history) return;
+        double* const h = &scdata.contact_history[history_offset];
+        for (int d = 0; d < 4; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
+    // exactCollision: the step of this contact's collision; its outcome for
+    // the tangential model goes to the history too.
+    double collisionForce(SurfacesIntersectData& sidata, double meff)
+    {
+        using namespace viscoelastic;
+        double* const h = &sidata.contact_history[history_offset];
+        CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1]};
+        const CollisionStep step =
+            exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state, sidata.deltan, -sidata.vn);
+        if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
+        h[2] = step.sinceStart, h[3] = step.endsAfter;
+        return meff * step.force;
+    }
+
+    int history_offset = -1;
+    bool exactCollision = false;
     bool limitForce = false;
     bool wallMassAsParticle = false;
     bool exactRestitution = false;

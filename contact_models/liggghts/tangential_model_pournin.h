@@ -13,7 +13,9 @@ TANGENTIAL_MODEL(TANGENTIAL_POURNIN,pournin,20)
 #include "contact_models.h"
 #include "tangential_model_base.h"
 #include "update.h"
+#include "core/collision.h"
 #include "core/law.h"
+#include "type_pair_table.h"
 
 namespace LIGGGHTS::ContactModels {
 
@@ -23,7 +25,7 @@ class TangentialModel<TANGENTIAL_POURNIN> : public TangentialModelBase
 {
 public:
     TangentialModel(LAMMPS* lmp, IContactHistorySetup* hsetup, class ContactModelBase* c)
-        : TangentialModelBase(lmp, hsetup, c)
+        : TangentialModelBase(lmp, hsetup, c), cmb(c)
     {
         // xi and the normal it is expressed in; both flip sign seen from j.
         history_offset = hsetup->add_history_value("pournin_xi_x", "1");
@@ -32,6 +34,7 @@ public:
         hsetup->add_history_value("pournin_n_x", "1");
         hsetup->add_history_value("pournin_n_y", "1");
         hsetup->add_history_value("pournin_n_z", "1");
+        c->add_history_offset("pournin_xi", history_offset);
     }
 
     void registerSettings(Settings&) {}
@@ -42,6 +45,7 @@ public:
         // coefficientFriction as the registry read it once (model viscoelastic checked it)
         registry.registerProperty("coeffFrict", &MODEL_PARAMS::createCoeffFrict);
         registry.connect("coeffFrict", coeffFrict, "tangential_model pournin");
+        collision_offset = cmb->get_history_offset("viscoelastic_collision");
     }
 
     inline void surfacesIntersect(const SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
@@ -58,8 +62,15 @@ public:
         const double limit = viscoelastic::frictionLimit(coeffFrict[sidata.itype][sidata.jtype], sidata.Fn);
         const bool advance = sidata.computeflag && sidata.shearupdate;
 
-        const Vec3 Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat,
-                                                             limit, update->dt, advance);
+        // exactCollision: model viscoelastic's table has the tangential law,
+        // and its step's outcome is in the contact history.
+        const viscoelastic::TypePairTable* const t = table();
+        const Vec3 Ft = t && t->exactCollision()
+            ? viscoelastic::pourninExactTangentialForce(state, normal, vt, contactPointMass(sidata),
+                                                        t->collision(sidata.itype, sidata.jtype).tangential,
+                                                        collisionStep(sidata), limit, advance)
+            : viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
+                                                   advance);
         if (advance)
             for (int d = 0; d < 3; ++d) {
                 h[d] = state.xi[d];
@@ -91,7 +102,32 @@ public:
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
+    // exactCollision's spring acts on the contact point's actual tangential
+    // mass (with the lever arms LIGGGHTS applies), so that it restitutes et.
+    static double contactPointMass(const SurfacesIntersectData& d)
+    {
+        return viscoelastic::contactPointMass(d.meff, d.mi, d.radi, d.cri, d.is_wall ? 0.0 : d.mj, d.radj, d.crj);
+    }
+
+    // The normal model's table (registered under the contact model both belong to).
+    const viscoelastic::TypePairTable* table()
+    {
+        if (!looked_) table_ = viscoelastic::TypePairTable::of(cmb), looked_ = true;
+        return table_;
+    }
+    viscoelastic::CollisionStep collisionStep(const SurfacesIntersectData& sidata) const
+    {
+        const double* const h = &sidata.contact_history[collision_offset];
+        viscoelastic::CollisionStep s;
+        s.sinceStart = h[2], s.endsAfter = h[3];
+        return s;
+    }
+
     double** coeffFrict = nullptr;
+    int collision_offset = -1;
+    const viscoelastic::TypePairTable* table_ = nullptr;
+    bool looked_ = false;
+    ContactModelBase* cmb;
     int history_offset;
 };
 

@@ -214,6 +214,7 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
                          bool exact, const char* caller)
 {
     const std::vector<ContactParameters> params = readParameters(lmp, registry, maxType, caller);
+    params_ = params;
     const double dt = lmp->update->dt;
     stride_ = maxType + 1;
     unit_.assign(stride_ * stride_, UnitCoefficients{});

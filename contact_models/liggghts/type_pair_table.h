@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/collision.h"
 #include "core/pournin.h"
 
 namespace LAMMPS_NS { class LAMMPS; }
@@ -32,11 +33,29 @@ public:
 
     const UnitCoefficients& unit(int i, int j) const { return unit_[i * stride_ + j]; }
 
+    // `exactCollision on` (core/collision.h), after load(): the step laws of
+    // every type pair (normal per unit meff, tangential per unit m_t), with
+    // ERRORs for settings it contradicts and for the unstable timestep; then
+    // the table is found by the contact model `owner` it belongs to, for
+    // `tangential pournin`.
+    struct CollisionLaws {
+        StepLaw normal, tangential;
+        FreeOscillator normalOscillator;  // the continuous law the steps follow
+    };
+    void loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool wallMassAsParticle, bool exactRestitution,
+                       const char* caller, const void* owner);
+    bool exactCollision() const { return !collision_.empty(); }
+    const CollisionLaws& collision(int i, int j) const { return collision_[i * stride_ + j]; }
+    static const TypePairTable* of(const void* owner);
+
 private:
     void say(const std::string& report, const std::vector<std::string>& warnings);
 
     int stride_ = 0;
     std::vector<UnitCoefficients> unit_;
+    std::vector<ContactParameters> params_;  // as read, for loadCollision
+    std::vector<CollisionLaws> collision_;
+    const void* owner_ = nullptr;
 
     // What this table printed at its last load, so the report appears once
     // per LAMMPS instance (see say()).

@@ -56,10 +56,10 @@ std::string modelArgs(const Case& c)
 }
 
 // wall/gran reads model settings only after the wall geometry
-std::string modelSettings(const Case& c)
+std::string modelSettings(const Case& c, const RunOptions& o)
 {
     return std::string("limitForce ") + (c.limitForce ? "on" : "off") +
-           (c.exactRestitution ? " exactRestitution on" : "");
+           (c.exactRestitution ? " exactRestitution on" : "") + (o.settings.empty() ? "" : " " + o.settings);
 }
 
 // A rectangle of two triangles in the plane x = 0, normal +x.
@@ -89,20 +89,20 @@ std::string setup(const Case& c, const RunOptions& o, int copies)
            num(-Lz) + " " + num(Lz) + " units box\n";
 }
 
-std::string physics(const Case& c)
+std::string physics(const Case& c, const RunOptions& o)
 {
     std::ostringstream s;
     s << "neighbor " << num(0.5 * std::min(c.radius1, c.radius2)) << " bin\nneigh_modify delay 0\n";
     s << typePair("contactDuration", c.params.tc) << typePair("coefficientRestitution", c.params.en)
       << typePair("coefficientRestitutionTangential", c.params.et)
       << typePair("coefficientFriction", c.params.mu);
-    s << "pair_style gran " << modelArgs(c) << " " << modelSettings(c) << "\npair_coeff * *\n";
+    s << "pair_style gran " << modelArgs(c) << " " << modelSettings(c, o) << "\npair_coeff * *\n";
     s << "timestep " << num(c.dt) << "\n";
     if (c.geometry == Geometry::Wall)
-        s << "fix wall all wall/gran " << modelArgs(c) << " primitive type 2 xplane 0.0 " << modelSettings(c) << "\n";
+        s << "fix wall all wall/gran " << modelArgs(c) << " primitive type 2 xplane 0.0 " << modelSettings(c, o) << "\n";
     if (c.geometry == Geometry::MeshWall)
         s << "fix plane all mesh/surface file plane.stl type 2\n"
-          << "fix wall all wall/gran " << modelArgs(c) << " mesh n_meshes 1 meshes plane " << modelSettings(c) << "\n";
+          << "fix wall all wall/gran " << modelArgs(c) << " mesh n_meshes 1 meshes plane " << modelSettings(c, o) << "\n";
     s << "fix integr all nve/sphere\n";
     s << "dump traj all custom 1 traj.dump id x y z vx vy vz omegax omegay omegaz\n"
          "dump_modify traj sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n";
@@ -209,7 +209,7 @@ std::string collisionInput(const Case& c, const RunOptions& o, const std::string
         atom(s.x1 + shift, s.v1, s.w1, c.radius1, c.density1);
         if (!c.isWall()) atom(s.x2 + shift, s.v2, s.w2, c.radius2, c.density2);
     }
-    in << physics(c) << extra;
+    in << physics(c, o) << extra;
     return in.str();
 }
 
@@ -237,7 +237,7 @@ std::vector<Trajectory> runLiggghts(const Case& c, const RunOptions& o, const st
     std::vector<BodyStates> frames = readDump(dir / "traj.dump", c, 1)[0].frames;
 
     std::ostringstream second;
-    second << setup(c, o, 1) << "read_restart collision.restart\n" << physics(c);
+    second << setup(c, o, 1) << "read_restart collision.restart\n" << physics(c, o);
     second << "run " << steps - first << "\n";
     std::ofstream(dir / "in.second") << second.str();
     fs::rename(dir / "traj.dump", dir / "traj.first.dump");

@@ -1,0 +1,90 @@
+// TypePairTable::loadCollision: the step laws of `exactCollision on` per type
+// pair (core/collision.h), the settings it contradicts, its timestep guard
+// and its report.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "comm.h"
+#include "core/stability.h"
+#include "error.h"
+#include "lammps.h"
+#include "messages.h"
+#include "type_pair_table.h"
+#include "update.h"
+
+namespace viscoelastic {
+
+void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool wallMassAsParticle,
+                                  bool exactRestitution, const char* caller, const void* owner)
+{
+    if (exactRestitution)
+        lmp->error->all(FLERR, format("%s: exactCollision on and exactRestitution on are alternatives: "
+                                      "exactCollision makes every single collision exact, exactRestitution only "
+                                      "their average over start phases; set one of them off",
+                                      caller)
+                                   .c_str());
+    if (wallMassAsParticle)
+        lmp->error->all(FLERR, format("%s: exactCollision on contradicts wallMassAsParticle on: the latter "
+                                      "reproduces YADE's wall contacts, whose effective mass m/2 makes them last "
+                                      "sqrt(2) tc, not tc; set one of them off",
+                                      caller)
+                                   .c_str());
+    const double dt = lmp->update->dt;
+    collision_.assign(stride_ * stride_, CollisionLaws{});
+    std::string report = format("%s: exactCollision on: every single collision restitutes en and (sticking) et "
+                                "and lasts tc, whatever its start within a step\n",
+                                caller);
+    for (int i = 1; i < stride_; ++i)
+        for (int j = i; j < stride_; ++j) {
+            const ContactParameters& p = params_[i * stride_ + j];
+            const auto osc = exactCollisionOscillators(p, limitForce);
+            if (!osc)
+                lmp->error->all(FLERR, format("%s: exactCollision on with limitForce on: type pair (%d,%d) asks for "
+                                              "en %g, but a contact whose attractive end is cut restitutes at "
+                                              "least %.3f whatever its coefficients; set limitForce off or "
+                                              "coefficientRestitution >= %.3f",
+                                              caller, i, j, p.en, leastCutRestitution(), leastCutRestitution())
+                                           .c_str());
+            CollisionLaws& c = collision_[i * stride_ + j];
+            c.normal = stepLaw(osc->normal.k, osc->normal.c, dt, limitForce);
+            c.tangential = stepLaw(osc->tangential.k, osc->tangential.c, dt, false);
+            c.normalOscillator = osc->normal;
+            collision_[j * stride_ + i] = c;
+            // A binary contact under these laws is stable at any step; a bead
+            // with many contacts is not: the same guard as the plain law, on
+            // the stiffnesses actually applied.
+            const UnitCoefficients applied{c.normal.kStep, c.normal.cStep, kTangentialMassRatio * c.tangential.kStep,
+                                           kTangentialMassRatio * c.tangential.cStep};
+            const double stable = kMultiContactFactor * criticalTimestep(applied);
+            if (dt > stable)
+                lmp->error->all(FLERR, format("%s: exactCollision: timestep %g s exceeds the stable timestep %g s of "
+                                              "type pair (%d,%d) (tc %g s, en %g, et %g): half the binary stability "
+                                              "limit of the applied law; use timestep < %g",
+                                              caller, dt, stable, i, j, p.tc, p.en, p.et, stable)
+                                           .c_str());
+            report += format("  (%d,%d): tc %g s, en %g, et %g%s: tc/dt %.2f; step law kn/meff %.6g 1/s^2, "
+                             "cn/meff %.6g 1/s (continuous: %.6g, %.6g)\n",
+                             i, j, p.tc, p.en, p.et,
+                             limitForce ? format(" (limitForce: followed law tc' %.6g s, en' %.6g)",
+                                                 kPi / osc->normal.omega,
+                                                 std::exp(-osc->normal.lambda * kPi / osc->normal.omega))
+                                              .c_str()
+                                        : "",
+                             p.tc / dt, c.normal.kStep, c.normal.cStep, osc->normal.k, osc->normal.c);
+        }
+    owner_ = owner;
+    if (lmp->comm->me == 0) {
+        if (lmp->screen) fputs(report.c_str(), lmp->screen);
+        if (lmp->logfile) fputs(report.c_str(), lmp->logfile);
+    }
+}
+
+const TypePairTable* TypePairTable::of(const void* owner)
+{
+    for (const TypePairTable* t : live_)
+        if (t->owner_ == owner && t->exactCollision()) return t;
+    return nullptr;
+}
+
+}  // namespace viscoelastic
