@@ -8,6 +8,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
                 (--restart: a settled 6 mm drum; otherwise one is settled, ~8 min)
   accuracy      dt = tc/5 ... tc/81, cost against two-body and drum errors (same slab), ~40 min
   multicontact  the dense column with exactRestitution, ~10 min
+  collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
   reductions    6 / 12 / 24 mm periods from the grid, ~1 h
   walls         the drum wall: surface velocity or rotating mesh, 90 / 180 / 360 facets (same slab)
@@ -25,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 import harness  # noqa: E402
 import common  # noqa: E402
 import accuracy  # noqa: E402
+import collision  # noqa: E402
 import core  # noqa: E402
 import cost  # noqa: E402
 import full_scene  # noqa: E402
@@ -45,6 +47,7 @@ def settings(restart):
         "cost": (cost, [["--steps", "2000", "--rounds", "5"] + (["--restart", str(restart)] if restart else [])]),
         "accuracy": (accuracy, [["--restart", slab]]),
         "multicontact": (multicontact, [[]]),
+        "collision": (collision, [[]]),
         "stability": (stability, [["--restart", slab],
                                   ["--scenes", "drum", "--restart", slab, "--drum-runs", "0.3:hooke",
                                    "--drum-fractions", "0.21,0.22,0.23,0.24", "--append"]]),
@@ -66,6 +69,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Two-body collisions: YADE and `limitForce on`", [yade_collide]),
         ("## 3. Accuracy against cost", [accuracy]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
+        ("### Every single collision exact: exactCollision", [collision]),
         ("## 4. Stability map", [stability]),
         ("## 5. Scaling: the full drum", [scaling]),
         ("### Speed of the full scene: decomposition, wall, skin, stock", [full_scene]),

@@ -9,7 +9,8 @@
 //   stability.h    binary timestep limit (Jury) and the multi-contact guard
 //   restitution.h  restitution of the continuous law with limitForce (Schwager & Poeschel)
 //   discrete.h     a binary collision as LIGGGHTS integrates it, phase averages
-//   exact.h        coefficients that restitute exactly at a given timestep
+//   exact.h        coefficients that restitute exactly at a given timestep (phase average)
+//   collision.h    every single collision exact: step-exact law, start and end within a step
 #pragma once
 
 #include "pournin.h"
@@ -18,3 +19,4 @@
 #include "restitution.h"
 #include "discrete.h"
 #include "exact.h"
+#include "collision.h"

@@ -13,6 +13,10 @@
 //       CSV: the binary stability limit (Jury) and the run's guard.
 //   contact_law bead-mass [--materials F]
 //       the mass of one bead [kg].
+//   contact_law single --en E [--et E2] [--tc T] [--limit-force] [--ratios R,...] [--phases N]
+//       CSV: single binary collisions over N start phases at each tc/dt,
+//       plain Pournin coefficients, exactRestitution and exactCollision:
+//       the worst and the mean relative error of en and (sticking) et.
 //   contact_law coefficients [--materials F] [--meff M]
 //       CSV per type pair: tc, en, et, mu and kn, cn, kt, ct per unit meff
 //       (or for the effective mass M).
@@ -25,6 +29,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/viscoelastic.h"
 #include "materials.h"  // tools/common: the one reader of inputs/materials.in
@@ -132,6 +137,47 @@ int coefficients(const Materials& m, std::optional<double> meff)
     return 0;
 }
 
+// One mode's errors over the phases: worst |e/en - 1| and mean (e/en - 1).
+struct PhaseErrors {
+    double worstEn = 0, meanEn = 0, worstEt = 0, meanEt = 0;
+    void add(double en, double et, const ContactParameters& p, int n)
+    {
+        const double a = en / p.en - 1.0, b = et / p.et - 1.0;
+        worstEn = std::max(worstEn, std::fabs(a)), meanEn += a / n;
+        worstEt = std::max(worstEt, std::fabs(b)), meanEt += b / n;
+    }
+};
+
+int single(const ContactParameters& p, bool limitForce, const std::vector<double>& ratios, int phases)
+{
+    std::printf("tc_over_dt,mode,worst_en_err,mean_en_err,worst_et_err,mean_et_err\n");
+    const auto osc = exactCollisionOscillators(p, limitForce);
+    for (double ratio : ratios) {
+        const double dt = p.tc / ratio;
+        const ExactSolution exact = exactUnitCoefficients(p, dt, limitForce);
+        std::map<std::string, PhaseErrors> e;
+        for (int k = 0; k < phases; ++k) {
+            const double phase = (k + 0.5) / phases;
+            const DiscreteCollision n =
+                discreteCollisionAtPhase(pourninUnitCoefficients(p), dt, limitForce, phase).outcome;
+            e["nominal"].add(n.restitution, n.tangentialRestitution, p, phases);
+            if (exact.ok()) {
+                const DiscreteCollision x = discreteCollisionAtPhase(exact.unit, dt, limitForce, phase).outcome;
+                e["exactRestitution"].add(x.restitution, x.tangentialRestitution, p, phases);
+            }
+            if (osc) {
+                const SteppedCollision c = exactCollisionAtPhase(stepLaw(osc->normal.k, osc->normal.c, dt, limitForce),
+                                                                 stepLaw(osc->tangential.k, osc->tangential.c, dt, false),
+                                                                 phase);
+                e["exactCollision"].add(c.restitution, c.tangentialRestitution, p, phases);
+            }
+        }
+        for (const auto& [mode, x] : e)
+            std::printf("%.6g,%s,%.6e,%.6e,%.6e,%.6e\n", ratio, mode.c_str(), x.worstEn, x.meanEn, x.worstEt, x.meanEt);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -172,6 +218,22 @@ int main(int argc, char** argv)
     CLI::Option* meffOpt = coeffCmd->add_option("--meff", meff, "effective mass [kg]: absolute constants")
                                ->check(CLI::PositiveNumber);
 
+    CLI::App* singleCmd = app.add_subcommand("single", "single-collision errors over start phases, CSV");
+    addMaterials(singleCmd);
+    double sEn = 0.0, sEt = 0.0, sTc = 0.0;
+    bool sLimit = false;
+    std::vector<double> ratios{4, 5, 7.3, 10, 15, 20, 30, 50, 81, 100};
+    int phases = 256;
+    singleCmd->add_option("--en", sEn, "normal restitution")->required()->check(CLI::Range(1e-300, 1.0));
+    CLI::Option* sEtOpt = singleCmd->add_option("--et", sEt, "tangential restitution (default: en)")
+                              ->check(CLI::Range(1e-300, 1.0));
+    CLI::Option* sTcOpt = singleCmd->add_option("--tc", sTc, "contact duration [s] (default: bead_tc)")
+                              ->check(CLI::PositiveNumber);
+    singleCmd->add_flag("--limit-force", sLimit, "limitForce on");
+    singleCmd->add_option("--ratios", ratios, "tc/dt values")->delimiter(',')->capture_default_str();
+    singleCmd->add_option("--phases", phases, "start phases (k + 0.5) / N")->check(CLI::PositiveNumber)
+        ->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*stockCmd)
@@ -179,6 +241,9 @@ int main(int argc, char** argv)
                          exact, dt, limitForce);
         if (*limitCmd)
             return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en);
+        if (*singleCmd)
+            return single({*sTcOpt ? sTc : Materials(path)["bead_tc"], sEn, *sEtOpt ? sEt : sEn, 0.0}, sLimit, ratios,
+                          phases);
         if (*massCmd) {
             std::printf("%.17g\n", beadMass(Materials(path)));
             return 0;

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Single collisions: the error of one collision against dt/tc, for Pournin's coefficients
+(nominal), exactRestitution (exact on average over start phases) and exactCollision (every
+collision exact), worst over 256 start phases, integer and non-integer tc/dt (`contact_law
+single`: the integrator's recurrence, which LIGGGHTS follows to round-off, tests/collide);
+and what exactCollision costs in LIGGGHTS: the dense column (inputs/column.in, tangential
+pournin) with exactRestitution and with exactCollision, interleaved rounds, loop-time ratio.
+Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+import harness  # noqa: E402
+import common  # noqa: E402
+
+RATIOS = "4,4.5,5,5.5,6,7.3,8.5,10,12.5,15,20,27.5,40,60,81,100"
+MODES = ("nominal", "exactRestitution", "exactCollision")
+
+
+def cases():
+    """(label, en, et, limitForce): Table 3.1's bead pair and bead-drum, and a strongly different pair."""
+    m = harness.materials()
+    pairs = [("beads", m["bead_en"], m["bead_et"]), ("bead-drum", m["drum_en"], m["drum_et"]), ("en 0.3 et 0.8", 0.3, 0.8)]
+    return [(label, en, et, lf) for label, en, et in pairs for lf in (False, True)]
+
+
+def parser():
+    p = harness.options(__doc__, out=common.RESULTS, rounds=5)
+    p.add_argument("--ratios", default=RATIOS, help="tc/dt (default: %(default)s)")
+    p.add_argument("--phases", type=int, default=256, help="start phases per collision (default: %(default)s)")
+    p.add_argument("--cost-time", type=float, default=0.1, help="simulated s per column run (default: %(default)s)")
+    return p
+
+
+def run(args):
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for label, en, et, lf in cases():
+        harness.say("collision", f"{label}, limitForce {'on' if lf else 'off'} ...")
+        text = harness.tool("contact_law", "single", "--en", en, "--et", et, "--ratios", args.ratios,
+                            "--phases", args.phases, *(["--limit-force"] if lf else []))
+        rows += [{"pair": label, "limitForce": "on" if lf else "off", **r} for r in harness.read_csv_text(text)]
+    harness.write_csv(out / "collision.csv", rows)
+
+    # cost: the settled column is what a dense flow asks of a contact; both with tangential pournin
+    variants = {mode: (lambda mode=mode: harness.liggghts(
+        "inputs/column.in", {"tangential": "pournin", "exact": "on" if mode == "exactRestitution" else "off",
+                             "collision": "on" if mode == "exactCollision" else "off", "time": args.cost_time,
+                             "name": f"collision/{mode}"},
+        log=harness.post(f"collision/{mode}.log")).loop_time) for mode in ("exactRestitution", "exactCollision")}
+    times = harness.interleaved(variants, args.rounds, progress=lambda text: harness.say("collision", text))
+    rounds = [{"round": k + 1, **{mode: times[mode][k] for mode in times}} for k in range(args.rounds)]
+    harness.write_csv(out / "collision_cost.csv", rounds)
+    harness.write_json(out / "collision.json", {
+        "ratios": args.ratios, "phases": args.phases, "cost_time_s": args.cost_time, "rounds": args.rounds,
+        "ratio": harness.median_ratio([r["exactCollision"] for r in rounds], [r["exactRestitution"] for r in rounds]),
+        "date": common.today()})
+
+
+def chart(rows, path):
+    fig, axes = harness.figure(2, 3, size=(5, 4.2), title="single collisions: worst relative error over start phases")
+    for i, (label, _, _, lf) in enumerate(cases()):
+        ax = axes[(i % 2) * 3 + i // 2]  # pairs across, limitForce off / on down
+        for mode, color, marker in zip(MODES, ("C3", "C0", "C2"), ("o", "s", "^")):
+            rs = [r for r in rows if r["pair"] == label and r["limitForce"] == ("on" if lf else "off") and r["mode"] == mode]
+            for key, ls in (("worst_en_err", "-"), ("worst_et_err", ":")):
+                ys = [max(r[key], 1e-16) for r in rs]
+                ax.plot([r["tc_over_dt"] for r in rs], ys, color=color, marker=marker, ls=ls, ms=3,
+                        label=f"{mode}, {'en' if key.startswith('worst_en') else 'et'}")
+        ax.axhline(5e-3, color="grey", lw=0.8)
+        ax.set(xscale="log", yscale="log", xlabel="tc / dt", ylabel="worst |e / e_requested - 1|",
+               title=f"{label}, limitForce {'on' if lf else 'off'}", ylim=(1e-16, 2))
+    axes[0].legend(fontsize=7)
+    harness.save(fig, path)
+
+
+@common.section_of("collision", "collision")
+def section(res, m, rows):
+    chart(rows, res.path("collision.png"))
+    table = []
+    for label, _, _, lf in cases():
+        for ratio in (5, 10):
+            row = {"pair": label, "limitForce": "on" if lf else "off", "tc/dt": ratio}
+            for mode in MODES:
+                r = [x for x in rows if x["pair"] == label and x["limitForce"] == row["limitForce"]
+                     and x["mode"] == mode and x["tc_over_dt"] == ratio]
+                row[mode] = (f"{100 * r[0]['worst_en_err']:.2g} % / {100 * r[0]['worst_et_err']:.2g} %" if r
+                             else "none (ERROR)")
+            table.append(row)
+    cost = res.csv("collision_cost.csv")
+    return (
+        f"One binary collision, worst relative error of en / et (sticking) over {m['phases']} start phases "
+        "(the\nintegrator's recurrence, which LIGGGHTS follows to round-off; the LIGGGHTS runs of "
+        "`tests/collide/test_exact_collision.cpp`\ncheck exactCollision per collision at random phases). "
+        "The grey line is 0.5 %.\n\n" + res.image("single collisions", "collision.png") + "\n"
+        + harness.markdown(table, [("pair", "pair", None), ("limitForce", "limitForce", None),
+                                   ("tc/dt", "tc/dt", "{:d}")] + [(f"{m_} en / et", m_, None) for m_ in MODES])
+        + f"\nCost in LIGGGHTS: the settled dense column, {m['rounds']} interleaved rounds of {m['cost_time_s']:g} s "
+        f"(tangential pournin):\nexactCollision / exactRestitution loop time, median of the per-round ratios: "
+        f"**{m['ratio']:.3f}** (per round: "
+        + ", ".join(f"{r['exactCollision'] / r['exactRestitution']:.3f}" for r in cost) + ").\n\n"
+        + common.sh(common.command("collision.py")))
+
+
+if __name__ == "__main__":
+    run(parser().parse_args())
