@@ -29,6 +29,7 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "exact.h"
 #include "law.h"
@@ -125,6 +126,31 @@ double bracketedRoot(F f, double lo, double hi)
     return 0.5 * (lo + hi);
 }
 
+// The same for f with its slope: (f, f') = fs(tau). Newton steps kept inside
+// the bracket (a few per contact end), bisection when one leaves it.
+template <class FS>
+double bracketedNewton(FS fs, double lo, double hi)
+{
+    double flo = fs(lo).first;
+    if (flo == 0.0) return lo;
+    double t = 0.5 * (lo + hi);
+    for (int it = 0; it < 60; ++it) {
+        const auto [f, df] = fs(t);
+        if (f == 0.0) return t;
+        if ((f > 0) == (flo > 0)) lo = t, flo = f;
+        else hi = t;
+        const double next = t - f / df, scale = 1e-15 * (std::fabs(lo) + std::fabs(hi));
+        if (next > lo && next < hi) {
+            if (std::fabs(next - t) < scale) return next;
+            t = next;
+        } else {
+            t = 0.5 * (lo + hi);
+        }
+        if (hi - lo < scale) return t;
+    }
+    return t;
+}
+
 }  // namespace detail
 
 // A contact first seen with overlap x1 and approach rate v0 touched x1 / v0
@@ -162,13 +188,19 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     }
     state.phase = CollisionPhase::touching;
     const auto ending = [&](double tau) { return law.o.ending(law.o.after(now, tau), law.forceEnds); };
+    const auto endingAndSlope = [&](double tau) {
+        const Motion m = law.o.after(now, tau);
+        const double acceleration = -law.o.k * m.x - law.o.c * m.u;
+        return law.forceEnds ? std::make_pair(law.o.k * m.x + law.o.c * m.u, law.o.k * m.u + law.o.c * acceleration)
+                             : std::make_pair(m.x, m.u);
+    };
     if (ending(dt) > 0.0) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
         r.force = (v - (next - x) / dt) / dt;
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
-    const double tau = ending(0.0) <= 0.0 ? 0.0 : detail::bracketedRoot(ending, 0.0, dt);
+    const double tau = ending(0.0) <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     state.phase = CollisionPhase::ended;
     r.endsAfter = tau;
     r.force = (v - law.o.after(now, tau).u) / dt;
