@@ -237,7 +237,7 @@ TEST(Restart, MidContactRestartContinuesTheCollision)
 // The library also works inside the stock Debian binary via LD_PRELOAD.
 TEST(Preload, StockLiggghtsWithPreloadedLibraryGivesTheSameRun)
 {
-    if (!fs::exists("/usr/bin/liggghts")) GTEST_SKIP() << "no /usr/bin/liggghts";
+    ASSERT_TRUE(fs::exists("/usr/bin/liggghts")) << "no /usr/bin/liggghts: setup.sh installs Debian's liggghts";
     Case c = headOn(Geometry::Wall, false);
     c.tangentialSpeed = 0.3;
     RunOptions stock = options("preload");

@@ -62,8 +62,6 @@ TEST(DrumMetrics, HeightsOfAFlatBed)
     EXPECT_DOUBLE_EQ(m["Hh"], maxZ);
     EXPECT_DOUBLE_EQ(m["Hd"], maxWallZ);
     EXPECT_NEAR(m["Hc"], sumZ / s.position.size(), 1e-12);
-    EXPECT_LE(m["Hd"], m["Hh"]);
-    EXPECT_LT(m["Hc"], 0.0);
     EXPECT_NEAR(m["angle"], 0.0, 0.5);
     // no velocities: the flowing layer is undefined, not an error
     EXPECT_TRUE(std::isnan(m["layer_thickness"]));
