@@ -41,9 +41,9 @@ struct Envelope {
 Envelope discretisationEnvelope(const Case& c, const Outcome& continuous)
 {
     Envelope env;
-    for (int p = 1; p <= 64; ++p) {
+    for (int p = 1; p <= 1024; ++p) {
         const viscoelastic::DiscreteCollision d =
-            viscoelastic::discreteCollisionAtPhase(c.params.tc, c.params.en, c.dt, c.limitForce, p / 64.0);
+            viscoelastic::discreteCollisionAtPhase(c.params.tc, c.params.en, c.dt, c.limitForce, p / 1024.0);
         env.restitution = std::max(env.restitution, std::fabs(d.restitution - continuous.restitution));
         env.peakOverlap =
             std::max(env.peakOverlap, std::fabs(d.peakOverlap * c.normalSpeed - continuous.peakOverlap));
@@ -81,14 +81,20 @@ std::string paramName(const testing::TestParamInfo<HeadOnParam>& i)
 class HeadOn : public testing::TestWithParam<HeadOnParam> {};
 
 // Acceptance at dt = tc/100: restitution within 1 % of the reference and
-// within the discretisation envelope; duration within 2 steps (the contact
+// within the discretisation envelope (the range of the integrator's outcome
+// over all start phases, 1024 sampled); duration within 2 steps (the contact
 // is resolved in whole steps, and limitForce ends it up to a step earlier).
+// Each case starts at its own phase, off any grid (the golden-ratio
+// sequence), so no case sits on a phase the envelope was built from.
 TEST_P(HeadOn, MatchesReferenceAtTcOver100)
 {
     Case c = headOn(GetParam().geometry, GetParam().limitForce);
     if (GetParam().unequal) c.radius2 = 2.5e-3, c.density2 = 7800.0, c.radius1 = 1.0e-3;
     const Reference ref = reference(c);
-    const Outcome lig = measureTrajectory(c, runLiggghts(c, options("headon_" + paramName({GetParam(), 0}))));
+    RunOptions o = options("headon_" + paramName({GetParam(), 0}));
+    const int index = static_cast<int>(GetParam().geometry) * 4 + GetParam().unequal * 2 + GetParam().limitForce;
+    o.phase = std::fmod(0.1 + 0.6180339887498949 * (index + 1), 1.0);
+    const Outcome lig = measureTrajectory(c, runLiggghts(c, o));
 
     const Envelope env = discretisationEnvelope(c, ref.outcome);
     EXPECT_LE(std::fabs(lig.restitution - ref.outcome.restitution), env.restitution + 1e-5);
@@ -124,25 +130,37 @@ TEST(Integrator, LiggghtsFollowsThePredictedRecurrence)
         }
 }
 
-// Sticking oblique impact: with `pournin` the contact-point tangential
-// velocity reverses by et (acceptance: within 3 % of the reference at
-// tc/100; the tangential oscillator has the normal one's recurrence, so its
-// discretisation error is the same ~0.6 %). The reference itself differs
-// from et only through the geometry of a finite contact (below).
+// Sticking oblique impact, et != en and a friction that never binds (mu
+// 1e6): with `pournin` the contact-point tangential velocity reverses by
+// the reference's restitution within the integrator's own error at this
+// step: the binary recurrence's tangential error at this phase (core,
+// discrete.h: ~0.5 % at tc/100) plus 0.1 % for the geometry the recurrence
+// leaves out (the lever arm R - overlap/2 varying within a step). The
+// reference itself differs from et only through the geometry of a finite
+// contact (below).
 TEST(Oblique, StickingTangentialRestitutionPournin)
 {
     for (Geometry g : {Geometry::Wall, Geometry::Pair}) {
         Case c = headOn(g, false);
-        c.params = {1e-4, 0.5, 0.5, 0.5};
+        c.params = {1e-4, 0.56, 0.3, 1e6};
         c.tangentialSpeed = 0.3;
         const Reference ref = reference(c);
         const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking")));
-        EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, 0.03) << name(g);
-        // first-order geometry: lever arm (overlap/R) and, for a pair, the turn
-        // of the line of centres during contact (vt tc / (R1 + R2))
-        const double turn = c.isWall() ? 0.0 : c.tangentialSpeed * c.params.tc / (c.radius1 + c.radius2);
-        const double geometric = ref.outcome.peakOverlap / c.radius1 + turn;
-        EXPECT_NEAR(ref.outcome.tangentialRestitution, c.params.et, 1.5 * geometric * c.params.et) << name(g);
+        const double discrete = viscoelastic::discreteCollisionAtPhase(
+            viscoelastic::pourninUnitCoefficients(c.params), c.dt, false, 0.5).outcome.tangentialRestitution;
+        const double tolerance = std::fabs(discrete / c.params.et - 1.0) + 1e-3;
+        EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, tolerance)
+            << name(g) << ": LIGGGHTS " << lig.tangentialRestitution << ", reference "
+            << ref.outcome.tangentialRestitution;
+        // The reference's own offset from et is geometric and first order: the
+        // lever arm (overlap / R) and, for a pair, the turn of the line of
+        // centres (vt tc / (R1 + R2)) both scale with the speeds: ten times
+        // slower, ten times smaller (to second-order terms: 8 to 12).
+        Case slow = c;
+        slow.normalSpeed /= 10.0, slow.tangentialSpeed /= 10.0;
+        const double offset = ref.outcome.tangentialRestitution / c.params.et - 1.0;
+        const double slowOffset = reference(slow).outcome.tangentialRestitution / c.params.et - 1.0;
+        EXPECT_NEAR(offset / slowOffset, 10.0, 2.0) << name(g) << ": offsets " << offset << ", " << slowOffset;
     }
 }
 
