@@ -66,4 +66,30 @@ inline std::string warningText(const ExactSolution& s)
     return w;
 }
 
+// A dashpot switched off whose contact then restitutes farther than
+// `tolerance` (relative) from the request, or not even reverses: the
+// settings contradict the request. Empty when they do not.
+inline std::string contradictionText(const ExactSolution& s, double tolerance)
+{
+    const ContactParameters& p = s.requested;
+    const auto far = [&](double achieved, double wanted) {
+        return !(achieved > 0.0) || std::fabs(achieved / wanted - 1.0) > tolerance;
+    };
+    const char* why = s.limitForce ? ": with limitForce on the normal force, and with it the friction limit, is cut "
+                                     "before the contact ends, so even undamped the spring restitutes no more"
+                                   : "";
+    if (s.undampedRestitution && far(*s.undampedRestitution, p.en))
+        return format("en %g cannot be reached at dt %g s (tc/dt %.2f): with no normal dashpot at all the contact "
+                      "restitutes %.4f%s; use a smaller timestep or another en",
+                      p.en, s.dt, p.tc / s.dt, *s.undampedRestitution, why);
+    if (s.undampedTangentialRestitution && far(*s.undampedTangentialRestitution, p.et))
+        return format("et %g cannot be reached at dt %g s (tc/dt %.2f): with no tangential dashpot at all a sticking "
+                      "contact restitutes %.4f%s%s",
+                      p.et, s.dt, p.tc / s.dt, *s.undampedTangentialRestitution, why,
+                      s.limitForce ? "; set limitForce off, raise en, or use exactCollision on (its tangential spring "
+                                     "lasts as long as the force)"
+                                   : "");
+    return "";
+}
+
 }  // namespace viscoelastic

@@ -59,8 +59,8 @@ public:
         if (exactCollision && cmb->get_history_offset("pournin_xi") < 0)
             error->all(FLERR, (std::string(caller) + ": exactCollision on needs `tangential pournin` (it "
                                "corrects the tangential spring at the start and end of each contact)").c_str());
-        table.load(lmp, registry, registry.max_type(), limitForce, exactRestitution,
-                   caller);
+        table.load(lmp, registry, registry.max_type(), limitForce, exactRestitution, caller,
+                   wallMassAsParticle && cmb->is_wall(), exactCollision);
         if (exactCollision) table.loadCollision(lmp, limitForce, wallMassAsParticle, exactRestitution, caller, cmb);
     }
 

@@ -141,6 +141,15 @@ void checkExact(LAMMPS_NS::LAMMPS* lmp, const Derived& d, int i, int j, double d
         lmp->error->all(FLERR, format("%s: exactRestitution: type pair (%d,%d): %s", caller, i, j,
                                       failureText(*d.exact).c_str())
                                    .c_str());
+    // A request the solver could only approach with a dashpot switched off:
+    // within the run's accuracy level (kAccuracyWarning) it is a WARNING
+    // (e.g. e = 1, a hair off); farther off, or not even reversed, the
+    // setting contradicts the request.
+    const std::string contradiction = contradictionText(*d.exact, kAccuracyWarning);
+    if (!contradiction.empty())
+        lmp->error->all(FLERR, format("%s: exactRestitution on: type pair (%d,%d): %s", caller, i, j,
+                                      contradiction.c_str())
+                                   .c_str());
     if (dt > d.stableTimestep)
         lmp->error->all(FLERR, format("%s: exactRestitution: timestep %g s exceeds the stable timestep %g s "
                                       "(half the binary limit) of the corrected coefficients of type pair (%d,%d)",
@@ -178,13 +187,21 @@ std::string reportLine(const ContactParameters& p, const Derived& d, int i, int 
                                  d.nominal.duration);
 }
 
-std::optional<std::string> warningOf(const ContactParameters& p, const Derived& d, int i, int j, double dt)
+std::optional<std::string> warningOf(const ContactParameters& p, const Derived& d, int i, int j, double dt,
+                                     bool limitForce)
 {
     if (d.exact) {
         const std::string w = warningText(*d.exact);
         if (w.empty()) return std::nullopt;
         return format("viscoelastic: type pair (%d,%d): %s", i, j, w.c_str());
     }
+    // limitForce moves the restitution itself, before any timestep error
+    const double moved = d.continuous / p.en - 1.0;
+    if (limitForce && std::fabs(moved) > kAccuracyWarning)
+        return format("viscoelastic: limitForce on: type pair (%d,%d) asks for en %g but, with the attractive end of "
+                      "the contact cut, restitutes %.4f (%+.1f%%; %.4f at this timestep); exactRestitution on or "
+                      "exactCollision on restitute en %g with limitForce on",
+                      i, j, p.en, d.continuous, 100.0 * moved, d.nominal.restitution, p.en);
     const double err = d.nominal.restitution / d.continuous - 1.0;
     if (std::fabs(err) <= kAccuracyWarning) return std::nullopt;
     return format("viscoelastic: at timestep %g s (tc/dt = %.1f) type pair (%d,%d) restitutes %.4f instead of %.4f "
@@ -211,8 +228,15 @@ TypePairTable::TypePairTable() { live_.push_back(this); }
 TypePairTable::~TypePairTable() { live_.erase(std::find(live_.begin(), live_.end(), this)); }
 
 void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce,
-                         bool exact, const char* caller)
+                         bool exact, const char* caller, bool wallMassAsParticle, bool collision)
 {
+    if (exact && wallMassAsParticle)
+        lmp->error->all(FLERR, format("%s: exactRestitution on contradicts wallMassAsParticle on: the coefficients "
+                                      "are solved for the contact's meff, and wallMassAsParticle then halves it "
+                                      "(YADE's convention), so a wall contact would last sqrt(2) tc and not "
+                                      "restitute en; set one of them off",
+                                      caller)
+                                   .c_str());
     const std::vector<ContactParameters> params = readParameters(lmp, registry, maxType, caller);
     params_ = params;
     const double dt = lmp->update->dt;
@@ -228,7 +252,9 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
             checkExact(lmp, d, i, j, dt, caller);
             unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;
             report += reportLine(p, d, i, j, dt);
-            if (const auto w = warningOf(p, d, i, j, dt)) warnings.push_back(*w);
+            // exactCollision replaces what the nominal law would do at this dt
+            if (const auto w = collision ? std::nullopt : warningOf(p, d, i, j, dt, limitForce))
+                warnings.push_back(*w);
         }
     lmp_ = lmp;
     say(report, warnings);

@@ -28,8 +28,11 @@ public:
     // the coefficients are those for which a binary collision at this
     // timestep restitutes en, et and lasts tc (core/exact.h). Then reports
     // the coefficients in the log.
+    // wallMassAsParticle (walls only) contradicts `exact`: an ERROR. With
+    // `collision` (exactCollision on, loadCollision follows) the nominal
+    // law's accuracy is not warned about.
     void load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce, bool exact,
-              const char* caller);
+              const char* caller, bool wallMassAsParticle = false, bool collision = false);
 
     const UnitCoefficients& unit(int i, int j) const { return unit_[i * stride_ + j]; }
 
