@@ -10,8 +10,16 @@ NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
 
 #include "contact_models.h"
 #include "normal_model_base.h"
+#include <algorithm>
+
+#include <cstdio>
+
+#include "atom.h"
+#include "comm.h"
 #include "core/collision.h"
 #include "core/law.h"
+#include "error.h"
+#include "messages.h"
 #include "type_pair_table.h"
 
 namespace LIGGGHTS::ContactModels {
@@ -69,6 +77,8 @@ public:
     inline void surfacesIntersect(SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
     {
         if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
+        if (sidata.deltan > kOverlapBound * (sidata.is_wall ? sidata.radi : std::min(sidata.radi, sidata.radj)))
+            overlapError(sidata);
         const double meff = (sidata.is_wall && wallMassAsParticle) ? 0.5 * sidata.meff : sidata.meff;
         const viscoelastic::Coefficients c = viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), meff);
         const double Fn = exactCollision ? collisionForce(sidata, meff)
@@ -100,6 +110,29 @@ public:
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
+    // The law and its lever arm r - overlap/2 assume small overlaps (Table
+    // 3.1's beads at 1 m/s: 1.6 % of r). Half the smaller radius is far past
+    // any physical contact: a timestep too large for the speeds, or beads
+    // created inside each other.
+    static constexpr double kOverlapBound = 0.5;
+
+    void overlapError(const SurfacesIntersectData& sidata)
+    {
+        const auto* tag = atom->tag;
+        const std::string who = sidata.is_wall
+            ? viscoelastic::format("atom %d and the wall", static_cast<int>(tag[sidata.i]))
+            : viscoelastic::format("atoms %d and %d", static_cast<int>(tag[sidata.i]), static_cast<int>(tag[sidata.j]));
+        const std::string msg = viscoelastic::format(
+            "model viscoelastic: %s overlap by %g m, more than half the smaller radius (%g m): the law assumes small "
+            "overlaps; the timestep is too large for these speeds, or the bodies were created inside each other",
+            who.c_str(), sidata.deltan,
+            kOverlapBound * (sidata.is_wall ? sidata.radi : std::min(sidata.radi, sidata.radj)));
+        // Error::one aborts at once; its unflushed message would be lost
+        for (FILE* f : {screen, logfile})
+            if (f) fprintf(f, "ERROR on proc %d: %s\n", comm->me, msg.c_str()), fflush(f);
+        error->one(FLERR, msg.c_str());
+    }
+
     // exactCollision: the step of this contact's collision; its outcome for
     // the tangential model goes to the history too.
     double collisionForce(SurfacesIntersectData& sidata, double meff)

@@ -117,3 +117,46 @@ TEST(Contradictions, LimitForceSaysTheEnItAchieves)
     EXPECT_EQ(outputOf(headOn(Geometry::Pair, false, 0.46, 0.46, 100.0), "contra_lf_off").find("limitForce on:"),
               std::string::npos);
 }
+
+// Overlaps past half the smaller radius stop the run naming the atoms (here
+// beads created 0.6 r inside each other, and one 0.6 r inside a wall); 0.4 r
+// runs on (it pushes them apart).
+TEST(Contradictions, OverlapBeyondHalfTheSmallerRadiusStopsNamingTheAtoms)
+{
+    const auto script = [](double depth, bool wall) {
+        const double r = 1.5e-3;
+        std::string s = "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n"
+                        "communicate single vel yes\nunits si\n"
+                        "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box\ncreate_box 2 box\n";
+        char buf[512];
+        if (wall) {
+            std::snprintf(buf, sizeof buf, "create_atoms 1 single %.17g 0 0 units box\n", r - depth * r);
+        } else {
+            std::snprintf(buf, sizeof buf, "create_atoms 1 single 0 0 0 units box\ncreate_atoms 1 single %.17g 0 0 units box\n",
+                          2 * r - depth * r);
+        }
+        s += buf;
+        s += "set type 1 diameter 3e-3 density 2500\nneighbor 1e-3 bin\n"
+             "fix m1 all property/global contactDuration peratomtypepair 2 1e-4 1e-4 1e-4 1e-4\n"
+             "fix m2 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5\n"
+             "fix m3 all property/global coefficientRestitutionTangential peratomtypepair 2 0.5 0.5 0.5 0.5\n"
+             "fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5\n"
+             "pair_style gran model viscoelastic tangential history\npair_coeff * *\ntimestep 1e-6\n";
+        if (wall) s += "fix w all wall/gran model viscoelastic tangential history primitive type 2 xplane 0.0\n";
+        s += "fix integr all nve/sphere\nrun 2\n";
+        return s;
+    };
+    const auto run = [](const std::string& s, const std::string& tag) {
+        try {
+            return runScript(s, options(tag));
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+    };
+    const std::string pair = run(script(0.6, false), "overlap_pair");
+    EXPECT_NE(pair.find("model viscoelastic: atoms 1 and 2 overlap by 0.0009"), std::string::npos) << pair;
+    EXPECT_NE(pair.find("more than half the smaller radius"), std::string::npos) << pair;
+    const std::string wall = run(script(0.6, true), "overlap_wall");
+    EXPECT_NE(wall.find("model viscoelastic: atom 1 and the wall overlap by 0.0009"), std::string::npos) << wall;
+    EXPECT_EQ(run(script(0.4, false), "overlap_ok").find("ERROR"), std::string::npos);
+}
