@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 import harness  # noqa: E402
 import common  # noqa: E402
 
-RUN_COLUMNS = ["en", "dt_over_tc", "model", "status", "beads_kept", "beads", "ke_final_J", "guard"]
+RUN_COLUMNS = ["en", "dt_over_tc", "model", "status", "beads_kept", "beads", "ke_final_J", "guard", "load"]
 MODELS = ("hooke", "viscoelastic")
 DRUM_ENERGY_FACTOR = 2  # the drum fails when its kinetic energy ends above this times the reference's
 
@@ -36,6 +36,8 @@ def parser():
     p.add_argument("--column-time", type=float, default=0.05, help="s per column run (default: 0.05)")
     p.add_argument("--settle-time", type=float, default=0.25, help="s to settle the column (default: 0.25)")
     p.add_argument("--column-ke", type=float, default=1e-3, help="column failure energy [J] (default: 1e-3)")
+    p.add_argument("--loads", default="1", help="column: gravity factors, e.g. 1,30 for a packing under the weight of "
+                                                "a 30 times taller column (more, and more loaded, contacts)")
     p.add_argument("--restart", type=Path, help="the settled 6 mm drum slab (drum scene)")
     p.add_argument("--drum-runs", default="0.3:hooke,0.9:hooke,table:hooke,table:viscoelastic", help="en:model pairs")
     p.add_argument("--drum-fractions", default="0.1,0.2,0.25,0.3,0.35,0.4,0.45,0.5", help="dt/tc of the drum scene")
@@ -71,11 +73,11 @@ def binary(ens, fractions):
 
 def column(ens, fractions, args):
     rows = []
-    for en in ens:
-        tag = f"column_en{en:g}"
-        harness.say("stability", f"settling the column, en {en:g} ...")
-        harness.liggghts("inputs/column.in", {"en": en, "time": args.settle_time, "name": f"stability/{tag}"},
-                         log=harness.post(f"stability/{tag}.log"))
+    for en, load in [(en, load) for load in common.numbers(args.loads) for en in ens]:
+        tag = f"column_en{en:g}" + (f"_load{load:g}" if load != 1 else "")
+        harness.say("stability", f"settling the column, en {en:g}, load {load:g} ...")
+        harness.liggghts("inputs/column.in", {"en": en, "time": args.settle_time, "name": f"stability/{tag}",
+                                              "load": load}, log=harness.post(f"stability/{tag}.log"))
         stock = common.stock_file(harness.post(f"stability/stock_{en:g}.in"), uniform=en)
         for f in fractions:
             for model in MODELS:
@@ -83,9 +85,9 @@ def column(ens, fractions, args):
                 log = harness.liggghts("inputs/column.in", {
                     "start": "restart", "restart": harness.post(f"stability/{tag}.restart"), "en": en,
                     "time": args.column_time, "dt": f"{f * common.tc():.6g}", "model": model, "stock": stock,
-                    "name": name}, log=harness.post(name + ".log"), check=False)
+                    "name": name, "load": load}, log=harness.post(name + ".log"), check=False)
                 ke = log.grep(r"^column: done, .* ke (\S+) J", cast=float, default=float("nan"))
-                rows.append(run_row(en, f, model, log, args.column_ke, ke))
+                rows.append({**run_row(en, f, model, log, args.column_ke, ke), "load": load})
                 harness.say("stability", f"column en {en:g}, dt/tc {f:g}, {model}: {rows[-1]['status']}")
     return rows
 
@@ -107,7 +109,8 @@ def drum(args):
             ke = log.thermo().get("KinEng", float("nan"))
             if f == args.reference and log.returncode == 0:
                 ke_ref = ke
-            rows.append(run_row(en if en == "table" else float(en), f, model, log, DRUM_ENERGY_FACTOR * ke_ref, ke))
+            rows.append({**run_row(en if en == "table" else float(en), f, model, log, DRUM_ENERGY_FACTOR * ke_ref, ke),
+                         "load": 1})
             harness.say("stability", f"drum en {en}, dt/tc {f:g}, {model}: {rows[-1]['status']}")
     return rows
 
