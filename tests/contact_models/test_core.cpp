@@ -25,9 +25,10 @@ double beadMass() { return 4.0 / 3.0 * kPi * std::pow(1.5e-3, 3) * 2500.0; }
 
 }  // namespace
 
-TEST(Coefficients, MatchEquations322To325)
+TEST(Coefficients, PourninFormsAsDerived)
 {
-    // Eq. 3.22-3.25 written out independently for a bead pair.
+    // Eq. 3.22-3.25 in their consistent forms (README: as printed and as
+    // coded), written out independently for a bead pair.
     const double meff = beadMass() / 2.0, tc = kBeads.tc, en = kBeads.en, et = kBeads.et;
     const double mt = 1.0 / (1.0 / meff + 2.0 * (1.5e-3 * 1.5e-3) / (0.4 * beadMass() * 1.5e-3 * 1.5e-3));
     const Coefficients c = scaled(pourninUnitCoefficients(kBeads), meff);
@@ -35,6 +36,22 @@ TEST(Coefficients, MatchEquations322To325)
     EXPECT_NEAR(c.cn, -2.0 * meff / tc * std::log(en), 1e-12 * c.cn);
     EXPECT_NEAR(c.kt, mt / (tc * tc) * (kPi * kPi + std::log(et) * std::log(et)), 1e-12 * c.kt);
     EXPECT_NEAR(c.ct, -2.0 * mt / tc * std::log(et), 1e-12 * c.ct);
+}
+
+// The chapter prints ct = m_t ln(et) / tc (no factor -2): taken as a
+// magnitude, half the derived damping. A sticking contact with it does not
+// restitute et: the code's form does, the printed one gives more.
+TEST(Coefficients, PrintedFormsAreNotTheLaw)
+{
+    const double tc = 1e-4, et = 0.46;
+    const auto sticking = [&](double k, double c) {  // per unit mass, rate after tc from (0, 1)
+        const double lambda = 0.5 * c, w = std::sqrt(k - lambda * lambda);
+        return std::exp(-lambda * tc) * (std::cos(w * tc) - lambda / w * std::sin(w * tc));
+    };
+    const Oscillator coded = pourninOscillator(tc, std::log(et));
+    EXPECT_NEAR(-sticking(coded.k, coded.c), et, 1e-12);
+    const double printedC = -std::log(et) / tc;  // |m_t ln(et) / tc| per unit m_t
+    EXPECT_GT(-sticking(coded.k, printedC), et + 0.1);
 }
 
 TEST(Coefficients, InverseGivesBackDurationAndRestitution)
