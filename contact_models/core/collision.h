@@ -187,20 +187,19 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         now = {x, law.uX * x + law.uV * vUsed};
     }
     state.phase = CollisionPhase::touching;
-    const auto ending = [&](double tau) { return law.o.ending(law.o.after(now, tau), law.forceEnds); };
     const auto endingAndSlope = [&](double tau) {
         const Motion m = law.o.after(now, tau);
         const double acceleration = -law.o.k * m.x - law.o.c * m.u;
         return law.forceEnds ? std::make_pair(law.o.k * m.x + law.o.c * m.u, law.o.k * m.u + law.o.c * acceleration)
                              : std::make_pair(m.x, m.u);
     };
-    if (ending(dt) > 0.0) {  // on along the continuous motion: the next sample lies on it
+    if (endingAndSlope(dt).first > 0.0) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
         r.force = (v - (next - x) / dt) / dt;
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
-    const double tau = ending(0.0) <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
+    const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     state.phase = CollisionPhase::ended;
     r.endsAfter = tau;
     r.force = (v - law.o.after(now, tau).u) / dt;
@@ -217,7 +216,7 @@ struct ContinuousCollision {
 
 inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool limitForce)
 {
-    const double half = 3.14159265358979323846 / o.omega;  // the overlap's zero: exactly tc
+    const double half = kPi / o.omega;  // the overlap's zero: exactly tc
     if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
     const auto force = [&](double t) { return o.ending(o.after({0.0, 1.0}, t), true); };
     // the force k x + c u turns negative after the peak overlap (u < 0), before x returns to 0
@@ -247,12 +246,11 @@ V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, co
         return ((next - xi) / dt - w) / dt;
     }
     if (normal.endsAfter >= 0.0) {
-        // the motion through this sample and the one before, per component
+        // the motion through this sample and the one before, per component;
+        // by linearity its rate at the end from the motions from (1, 0) and (0, 1)
         const V rate = law.uX * xi + law.uV * w;
         const double tau = normal.endsAfter;
-        const double e = std::exp(-law.o.lambda * tau), co = std::cos(law.o.omega * tau),
-                     si = std::sin(law.o.omega * tau) / law.o.omega;
-        const V exit = e * (rate * co - (law.o.lambda * rate + law.o.k * xi) * si);
+        const V exit = law.o.after({1.0, 0.0}, tau).u * xi + law.o.after({0.0, 1.0}, tau).u * rate;
         return (exit - w) / dt;
     }
     return -(law.kStep * xi + law.cStep * w);

@@ -46,11 +46,27 @@ inline Vec3 rotateWithNormal(const Vec3& v, const Vec3& from, const Vec3& to)
 }
 
 // Per-contact state of the `pournin` tangential law: the tangential overlap
-// xi_t (Eq. 3.9) and the normal it was last expressed in.
+// xi_t (Eq. 3.9), the normal it was last expressed in, and the normal force
+// of Eq. 3.20 (not clipped by limitForce) at that step.
 struct TangentialState {
     Vec3 xi = Vec3::Zero();
     Vec3 normal = Vec3::Zero();  // zero before the first step of a contact
+    double normalForce = 0.0;
 };
+
+// Where the unclipped normal force kn xi + cn dxi/dt changed sign between the
+// previous step and this one, the cap mu |Fn| of Eq. 3.18 passed through zero
+// in between: the continuous law slid there and reset its spring to zero
+// force, whatever mu. With et != en the spring still holds force then (it is
+// in phase with Fn only when et = en), so sampling the cap at the steps alone
+// keeps part of it and converges slowly (about half order). Returns the time
+// since that zero, by linear interpolation of the force (first order, like
+// the step), or a negative value when the force kept its sign.
+inline double timeSinceCapZero(double previousForce, double force, double dt)
+{
+    if (!(previousForce * force < 0.0)) return -1.0;
+    return dt * force / (force - previousForce);
+}
 
 // Tangential law of the thesis (Eq. 3.18-3.21) for one step.
 // The overlap is carried with the rotating contact frame (rotated, not
@@ -59,16 +75,23 @@ struct TangentialState {
 // Coulomb cap applies to the total force kt xi + ct dxi/dt; when it binds the
 // spring is reset so that it reproduces the capped force (Luding 2008), which
 // keeps the force continuous when sliding stops.
+// `unclippedNormalForce` (kn xi + cn dxi/dt) locates the cap's zeros between
+// steps (timeSinceCapZero): there the spring restarts from zero force.
 // Returns the tangential force on i. `advance` is false when LIGGGHTS only
 // evaluates forces without moving history (e.g. `run 0`).
 inline Vec3 pourninTangentialForce(TangentialState& s, const Vec3& n, const Vec3& vt, double kt,
-                                   double ct, double limit, double dt, bool advance)
+                                   double ct, double limit, double dt, bool advance,
+                                   double unclippedNormalForce)
 {
     if (advance) {
-        if (s.normal.squaredNorm() > 0.0) s.xi = rotateWithNormal(s.xi, s.normal, n);
+        const bool under_way = s.normal.squaredNorm() > 0.0;
+        if (under_way) s.xi = rotateWithNormal(s.xi, s.normal, n);
         s.xi += vt * dt;
         s.xi -= s.xi.dot(n) * n;  // round-off only: the rotation keeps xi in the plane
+        const double since = under_way ? timeSinceCapZero(s.normalForce, unclippedNormalForce, dt) : -1.0;
+        if (since >= 0.0 && kt > 0.0) s.xi = -(ct / kt) * vt + vt * since;
         s.normal = n;
+        s.normalForce = unclippedNormalForce;
     }
     Vec3 f = -(kt * s.xi + ct * vt);
     const double fmag = f.norm();

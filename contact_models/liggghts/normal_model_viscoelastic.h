@@ -8,12 +8,11 @@ NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
 #ifndef NORMAL_MODEL_VISCOELASTIC_H_
 #define NORMAL_MODEL_VISCOELASTIC_H_
 
-#include "contact_models.h"
-#include "normal_model_base.h"
 #include <algorithm>
-
 #include <cstdio>
 
+#include "contact_models.h"
+#include "normal_model_base.h"
 #include "atom.h"
 #include "comm.h"
 #include "core/collision.h"
@@ -77,8 +76,8 @@ public:
     inline void surfacesIntersect(SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
     {
         if (sidata.contact_flags) *sidata.contact_flags |= CONTACT_NORMAL_MODEL;
-        if (sidata.deltan > kOverlapBound * (sidata.is_wall ? sidata.radi : std::min(sidata.radi, sidata.radj)))
-            overlapError(sidata);
+        const double overlapBound = kOverlapBound * (sidata.is_wall ? sidata.radi : std::min(sidata.radi, sidata.radj));
+        if (sidata.deltan > overlapBound) overlapError(sidata, overlapBound);
         const double meff = (sidata.is_wall && wallMassAsParticle) ? 0.5 * sidata.meff : sidata.meff;
         const viscoelastic::Coefficients c = viscoelastic::scaled(table.unit(sidata.itype, sidata.jtype), meff);
         const double Fn = exactCollision ? collisionForce(sidata, meff)
@@ -116,7 +115,7 @@ private:
     // created inside each other.
     static constexpr double kOverlapBound = 0.5;
 
-    void overlapError(const SurfacesIntersectData& sidata)
+    void overlapError(const SurfacesIntersectData& sidata, double bound)
     {
         const auto* tag = atom->tag;
         const std::string who = sidata.is_wall
@@ -125,8 +124,7 @@ private:
         const std::string msg = viscoelastic::format(
             "model viscoelastic: %s overlap by %g m, more than half the smaller radius (%g m): the law assumes small "
             "overlaps; the timestep is too large for these speeds, or the bodies were created inside each other",
-            who.c_str(), sidata.deltan,
-            kOverlapBound * (sidata.is_wall ? sidata.radi : std::min(sidata.radi, sidata.radj)));
+            who.c_str(), sidata.deltan, bound);
         // Error::one aborts at once; its unflushed message would be lost
         for (FILE* f : {screen, logfile})
             if (f) fprintf(f, "ERROR on proc %d: %s\n", comm->me, msg.c_str()), fflush(f);

@@ -34,6 +34,7 @@ public:
         hsetup->add_history_value("pournin_n_x", "1");
         hsetup->add_history_value("pournin_n_y", "1");
         hsetup->add_history_value("pournin_n_z", "1");
+        hsetup->add_history_value("pournin_fn", "0");  // the unclipped normal force: the same seen from j
         c->add_history_offset("pournin_xi", history_offset);
     }
 
@@ -57,6 +58,7 @@ public:
         viscoelastic::TangentialState state;
         state.xi = Vec3(h[0], h[1], h[2]);
         state.normal = Vec3(h[3], h[4], h[5]);
+        state.normalForce = h[6];
         const Vec3 normal(sidata.en[0], sidata.en[1], sidata.en[2]);  // LIGGGHTS calls the contact normal `en`
         const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
         const double limit = viscoelastic::frictionLimit(coeffFrict[sidata.itype][sidata.jtype], sidata.Fn);
@@ -70,12 +72,14 @@ public:
                                                         t->collision(sidata.itype, sidata.jtype).tangential,
                                                         collisionStep(sidata), limit, advance)
             : viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
-                                                   advance);
-        if (advance)
+                                                   advance, unclippedNormalForce(sidata));
+        if (advance) {
             for (int d = 0; d < 3; ++d) {
                 h[d] = state.xi[d];
                 h[3 + d] = state.normal[d];
             }
+            h[6] = state.normalForce;
+        }
 
         // Torque about each centre from the force at the contact point.
         const Vec3 nxF = normal.cross(Ft);
@@ -95,13 +99,19 @@ public:
         if (scdata.contact_flags) *scdata.contact_flags &= ~CONTACT_TANGENTIAL_MODEL;
         if (!scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
-        for (int d = 0; d < 6; ++d) h[d] = 0.0;
+        for (int d = 0; d < 7; ++d) h[d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
     void endPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
 
 private:
+    // Eq. 3.20 before limitForce clips it, from the coefficients model viscoelastic set.
+    static double unclippedNormalForce(const SurfacesIntersectData& d)
+    {
+        return viscoelastic::normalForce({d.kn, d.gamman, d.kt, d.gammat}, d.deltan, -d.vn, false);
+    }
+
     // exactCollision's spring acts on the contact point's actual tangential
     // mass (with the lever arms LIGGGHTS applies), so that it restitutes et.
     static double contactPointMass(const SurfacesIntersectData& d)

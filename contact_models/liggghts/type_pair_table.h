@@ -42,8 +42,7 @@ public:
     // the table is found by the contact model `owner` it belongs to, for
     // `tangential pournin`.
     struct CollisionLaws {
-        StepLaw normal, tangential;
-        FreeOscillator normalOscillator;  // the continuous law the steps follow
+        StepLaw normal, tangential;  // each holds the continuous oscillator it follows
     };
     void loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool wallMassAsParticle, bool exactRestitution,
                        const char* caller, const void* owner);

@@ -3,25 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <stdexcept>
 
 #include "core/restitution.h"
+#include "run_options.h"
 #include "runner.h"
 
 using namespace collide;
-namespace fs = std::filesystem;
 
 namespace {
-
-RunOptions options(const std::string& tag, const std::string& settings = "")
-{
-    RunOptions o;
-    o.liggghts = LIGGGHTS_LAUNCHER;
-    o.workdir = (fs::path(TEST_WORK_DIR) / tag).string();
-    o.settings = settings;
-    return o;
-}
 
 // LIGGGHTS' output: the exception's text when it fails, else what it printed.
 std::string outputOf(const Case& c, const std::string& tag, const std::string& settings = "")

@@ -4,26 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <cstdlib>
 #include <random>
 
 #include "core/collision.h"
+#include "run_options.h"
 #include "runner.h"
 
 using namespace collide;
-namespace fs = std::filesystem;
 
 namespace {
-
-RunOptions options(const std::string& tag)
-{
-    RunOptions o;
-    o.liggghts = LIGGGHTS_LAUNCHER;
-    o.workdir = (fs::path(TEST_WORK_DIR) / tag).string();
-    o.settings = "exactCollision on";
-    return o;
-}
 
 std::vector<double> randomPhases(int n, unsigned seed)
 {
@@ -43,7 +33,7 @@ struct Worst {
 Worst worstOverPhases(const Case& c, const std::string& tag, unsigned seed, double enWant, double etWant)
 {
     const std::vector<double> phases = randomPhases(12, seed);
-    const std::vector<Trajectory> runs = runLiggghts(c, options(tag), phases);
+    const std::vector<Trajectory> runs = runLiggghts(c, options(tag, "exactCollision on"), phases);
     Worst w;
     for (size_t k = 0; k < runs.size(); ++k) {
         const Outcome o = measureTrajectory(c, runs[k]);

@@ -8,20 +8,13 @@
 #include <regex>
 #include <stdexcept>
 
+#include "run_options.h"
 #include "runner.h"
 
 using namespace collide;
 namespace fs = std::filesystem;
 
 namespace {
-
-RunOptions options(const std::string& tag)
-{
-    RunOptions o;
-    o.liggghts = LIGGGHTS_LAUNCHER;
-    o.workdir = (fs::path(TEST_WORK_DIR) / tag).string();
-    return o;
-}
 
 Case headOn(Geometry g, bool limitForce)
 {

@@ -207,7 +207,7 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
     put(y, 3, s0.x2), put(y, 4, s0.v2), put(y, 5, s0.w2);
 
     boost::numeric::odeint::runge_kutta4<State> stepper;
-    double t = 0.0, peak = 0.0, prevOverlap = 0.0;
+    double t = 0.0, peak = 0.0, prevOverlap = 0.0, prevForce = 0.0;
     const double tMax = 50.0 * c.params.tc;
     bool touched = false;
     double duration = 0.0;
@@ -224,6 +224,15 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
             bool sliding;
             const Vec3 Ft = law.tangentialForce(xi, ck.tangentialVelocity, law.normalForce(ck), sliding);
             if (sliding) xi = law.slidingSpring(Ft, ck.tangentialVelocity);
+            // Where kn xi + cn dxi/dt changes sign the cap mu |Fn| is zero:
+            // the spring slid to zero force there, at any mu (an instant the
+            // steps above would miss for large mu).
+            const double force = viscoelastic::normalForce(law.k, ck.overlap, -ck.normalVelocity, false);
+            if (prevForce * force < 0.0) {
+                const double since = h * force / (force - prevForce);
+                xi = law.slidingSpring(Vec3::Zero(), ck.tangentialVelocity) + since * ck.tangentialVelocity;
+            }
+            prevForce = force;
             put(y, 6, xi);
         } else if (touched) {
             // linear interpolation of the overlap's zero crossing
