@@ -67,7 +67,7 @@ void ContactPournin(benchmark::State& state)
             const Coefficients co = scaled(kUnit, k.meff);
             const double fn = normalForce(co, k.overlap, k.rate, false);
             const Vec3 ft = pourninTangentialForce(k.state, k.n, k.vt, co.kt, co.ct, frictionLimit(0.5, fn), 1e-5,
-                                                   true, fn);
+                                                   true, fn, 1e-5);
             benchmark::DoNotOptimize(ft);
         }
     state.SetItemsProcessed(state.iterations() * kContacts);

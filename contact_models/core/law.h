@@ -75,18 +75,29 @@ inline double timeSinceCapZero(double previousForce, double force, double dt)
 // Coulomb cap applies to the total force kt xi + ct dxi/dt; when it binds the
 // spring is reset so that it reproduces the capped force (Luding 2008), which
 // keeps the force continuous when sliding stops.
+// The time since a contact's first touch at its first overlapping step:
+// overlap over approach rate (free flight before it), at most a step. Its
+// tangential overlap grew for that long, not a whole step: with a whole step
+// the spring leads the normal overlap by up to vt dt, and with et = en the
+// tangential force is no longer in phase with the normal one.
+inline double timeSinceTouch(double overlap, double overlapRate, double dt)
+{
+    return (overlapRate > 0.0 && overlap < overlapRate * dt) ? overlap / overlapRate : dt;
+}
+
 // `unclippedNormalForce` (kn xi + cn dxi/dt) locates the cap's zeros between
 // steps (timeSinceCapZero): there the spring restarts from zero force.
-// Returns the tangential force on i. `advance` is false when LIGGGHTS only
-// evaluates forces without moving history (e.g. `run 0`).
+// `sinceTouch` (timeSinceTouch) is the part of the step in contact, used at
+// the contact's first step. Returns the tangential force on i. `advance` is
+// false when LIGGGHTS only evaluates forces without moving history (`run 0`).
 inline Vec3 pourninTangentialForce(TangentialState& s, const Vec3& n, const Vec3& vt, double kt,
                                    double ct, double limit, double dt, bool advance,
-                                   double unclippedNormalForce)
+                                   double unclippedNormalForce, double sinceTouch)
 {
     if (advance) {
         const bool under_way = s.normal.squaredNorm() > 0.0;
         if (under_way) s.xi = rotateWithNormal(s.xi, s.normal, n);
-        s.xi += vt * dt;
+        s.xi += vt * (under_way ? dt : sinceTouch);
         s.xi -= s.xi.dot(n) * n;  // round-off only: the rotation keeps xi in the plane
         const double since = under_way ? timeSinceCapZero(s.normalForce, unclippedNormalForce, dt) : -1.0;
         if (since >= 0.0 && kt > 0.0) s.xi = -(ct / kt) * vt + vt * since;

@@ -72,7 +72,8 @@ public:
                                                         t->collision(sidata.itype, sidata.jtype).tangential,
                                                         collisionStep(sidata), limit, advance)
             : viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
-                                                   advance, unclippedNormalForce(sidata));
+                                                   advance, unclippedNormalForce(sidata),
+                                                   viscoelastic::timeSinceTouch(sidata.deltan, -sidata.vn, update->dt));
         if (advance) {
             for (int d = 0; d < 3; ++d) {
                 h[d] = state.xi[d];

@@ -123,38 +123,41 @@ TEST(Integrator, LiggghtsFollowsThePredictedRecurrence)
         }
 }
 
-// Sticking oblique impact, et != en and a friction that never binds (mu
-// 1e6): with `pournin` the contact-point tangential velocity reverses by
-// the reference's restitution within the integrator's own error at this
-// step: the binary recurrence's tangential error at this phase (core,
-// discrete.h: ~0.5 % at tc/100) plus 0.1 % for the geometry the recurrence
-// leaves out (the lever arm R - overlap/2 varying within a step). The
-// reference itself differs from et only through the geometry of a finite
-// contact (below).
-TEST(Oblique, StickingTangentialRestitutionPournin)
+// Oblique impacts with et != en and finite friction, against the continuous
+// law (the reference ODE, which slides where Fn, and so the cap mu |Fn|,
+// passes through zero, whatever mu, and so restitutes more than et; that
+// holds by construction only for et = en). Averaged over 32 start phases
+// (sampling error below 0.01 % here). Nominal coefficients: the error is
+// first order (observed order between tc/25, tc/50 and tc/100 within
+// 0.7-1.3); exactRestitution on: within 1 % at tc/10 and tc/20 (the design
+// goal; measured 0.3-0.6 % at tc/10, 0.1-0.25 % at tc/20).
+TEST(Oblique, FiniteFrictionWithEtUnlikeEnFollowsTheLaw)
 {
-    for (Geometry g : {Geometry::Wall, Geometry::Pair}) {
-        Case c = headOn(g, false);
-        c.params = {1e-4, 0.56, 0.3, 1e6};
-        c.tangentialSpeed = 0.3;
-        const Reference ref = reference(c);
-        const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking")));
-        const double discrete = viscoelastic::discreteCollisionAtPhase(
-            viscoelastic::pourninUnitCoefficients(c.params), c.dt, false, 0.5).outcome.tangentialRestitution;
-        const double tolerance = std::fabs(discrete / c.params.et - 1.0) + 1e-3;
-        EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, tolerance)
-            << name(g) << ": LIGGGHTS " << lig.tangentialRestitution << ", reference "
-            << ref.outcome.tangentialRestitution;
-        // The reference's own offset from et is geometric and first order: the
-        // lever arm (overlap / R) and, for a pair, the turn of the line of
-        // centres (vt tc / (R1 + R2)) both scale with the speeds: ten times
-        // slower, ten times smaller (to second-order terms: 8 to 12).
-        Case slow = c;
-        slow.normalSpeed /= 10.0, slow.tangentialSpeed /= 10.0;
-        const double offset = ref.outcome.tangentialRestitution / c.params.et - 1.0;
-        const double slowOffset = reference(slow).outcome.tangentialRestitution / c.params.et - 1.0;
-        EXPECT_NEAR(offset / slowOffset, 10.0, 2.0) << name(g) << ": offsets " << offset << ", " << slowOffset;
-    }
+    const viscoelastic::ContactParameters kinds[] = {{1e-4, 0.56, 0.46, 0.5}, {1e-4, 0.3, 0.8, 0.5}};
+    for (Geometry g : {Geometry::Wall, Geometry::Pair})
+        for (const auto& p : kinds) {
+            Case c = headOn(g, false);
+            c.params = p;
+            c.tangentialSpeed = 0.2;
+            const double law = reference(c).outcome.tangentialRestitution;
+            SCOPED_TRACE(testing::Message() << name(g) << ", en " << p.en << ", et " << p.et << ": law " << law);
+            EXPECT_GT(std::fabs(law / p.et - 1.0), 0.03);  // the law does not restitute et
+            auto error = [&](double ratio, bool exact) {
+                Case k = c;
+                k.dt = p.tc / ratio;
+                k.exactRestitution = exact;
+                const auto runs = runLiggghts(k, options("oblique_law"), evenPhases(32));
+                return meanOutcome(k, runs).tangentialRestitution / law - 1.0;
+            };
+            const double e25 = error(25, false), e50 = error(50, false), e100 = error(100, false);
+            for (double order : {std::log2(e25 / e50), std::log2(e50 / e100)}) {
+                EXPECT_GT(order, 0.7) << "errors " << e25 << ", " << e50 << ", " << e100;
+                EXPECT_LT(order, 1.3) << "errors " << e25 << ", " << e50 << ", " << e100;
+            }
+            const double x10 = error(10, true), x20 = error(20, true);
+            EXPECT_LT(std::fabs(x10), 0.01);
+            EXPECT_LT(std::fabs(x20), 0.01);
+        }
 }
 
 // Stock `history` caps only the elastic part against mu |Fn|, which passes

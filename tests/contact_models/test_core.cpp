@@ -178,11 +178,11 @@ TEST(Tangential, StickingForceIsSpringPlusDashpot)
 {
     TangentialState s;
     const Vec3 n(1, 0, 0), vt(0, 0.01, 0);
-    const Vec3 f = pourninTangentialForce(s, n, vt, 1e4, 2.0, 1e9, 1e-6, true, 1.0);
+    const Vec3 f = pourninTangentialForce(s, n, vt, 1e4, 2.0, 1e9, 1e-6, true, 1.0, 1e-6);
     EXPECT_NEAR(s.xi.y(), 1e-8, 1e-20);
     EXPECT_NEAR(f.y(), -(1e4 * 1e-8 + 2.0 * 0.01), 1e-15);
     // without advancing, the overlap stays
-    pourninTangentialForce(s, n, vt, 1e4, 2.0, 1e9, 1e-6, false, 1.0);
+    pourninTangentialForce(s, n, vt, 1e4, 2.0, 1e9, 1e-6, false, 1.0, 1e-6);
     EXPECT_NEAR(s.xi.y(), 1e-8, 1e-20);
 }
 
@@ -193,7 +193,7 @@ TEST(Tangential, CoulombCapBindsTotalForceAndSpringReproducesIt)
     s.normal = Vec3(1, 0, 0);
     const Vec3 n(1, 0, 0), vt(0, 0.5, 0.2);
     const double kt = 1e4, ct = 3.0, limit = 0.7;
-    const Vec3 f = pourninTangentialForce(s, n, vt, kt, ct, limit, 1e-6, true, 1.0);
+    const Vec3 f = pourninTangentialForce(s, n, vt, kt, ct, limit, 1e-6, true, 1.0, 1e-6);
     EXPECT_NEAR(f.norm(), limit, 1e-12);
     // force direction: that of the trial force
     const Vec3 trial = -(kt * Vec3(0, 1e-4 + 0.5e-6, 0.2e-6) + ct * vt);
@@ -218,10 +218,10 @@ double stickingWallImpact(const ContactParameters& p, double vn, double vt, doub
     const Vec3 n(1, 0, 0), y(0, 1, 0);
     double x = vn * dt * phase, u = vn, w = vt;  // overlap, approach rate, contact-point speed
     TangentialState s;
-    s.xi = w * dt * (phase - 1.0) * y;  // the first step adds w dt
     while (x > 0.0) {
         const double Fn = normalForce(c, x, u, false);
-        const Vec3 Ft = pourninTangentialForce(s, n, w * y, c.kt, c.ct, frictionLimit(p.mu, Fn), dt, true, Fn);
+        const Vec3 Ft = pourninTangentialForce(s, n, w * y, c.kt, c.ct, frictionLimit(p.mu, Fn), dt, true, Fn,
+                                               timeSinceTouch(x, u, dt));
         u -= Fn / m * dt;
         w += Ft.y() / mt * dt;
         x += u * dt;
@@ -273,7 +273,7 @@ TEST(Tangential, TurningNormalKeepsOverlapLength)
     s.xi = Vec3(0, 1e-5, 0);
     s.normal = Vec3(1, 0, 0);
     const Vec3 n = Vec3(1, 0.2, 0).normalized();
-    pourninTangentialForce(s, n, Vec3::Zero(), 1.0, 0.0, 1e9, 1e-6, true, 1.0);
+    pourninTangentialForce(s, n, Vec3::Zero(), 1.0, 0.0, 1e9, 1e-6, true, 1.0, 1e-6);
     EXPECT_NEAR(s.xi.norm(), 1e-5, 1e-18);
     EXPECT_NEAR(s.xi.dot(n), 0.0, 1e-20);
     EXPECT_EQ(s.normal, n);
