@@ -22,11 +22,19 @@
 
 namespace viscoelastic {
 
-// A bead with many simultaneous contacts oscillates faster than a binary
-// contact: a settled column fails from 0.72-0.77 of the binary limit, the
-// turning drum from 0.55-0.62 of it (benchmarks/README.md, stability map).
-// Runs stop above this fraction of the binary limit.
-constexpr double kMultiContactFactor = 0.5;
+// A bead pressed by several neighbours at once feels their springs and
+// dashpots in parallel, so a dense packing goes unstable before a binary
+// contact does. Measured (benchmarks/README.md, stability map: the settled
+// column under its own weight and under 30 times it, stock hooke/stiffness
+// with our constants, en 0.1-0.95): the onset is the binary limit of an
+// oscillator Z = 3.1-3.3 times stiffer and more damped, the same Z for every
+// en (the last stable runs need Z >= 3.28, the first failing ones Z <= 3.12);
+// the turning drum fails later (Z 1.8-2.1). The guard takes Z = 3.5, 12 %
+// above the largest Z of a failing run: its timestep lies 6-15 % below the
+// first failing one of each en. A fixed fraction of the binary limit cannot
+// do this: the onset lies at 0.43 of it for en 0.1 and 0.56 for en 0.95
+// (the former guard, half of it, let en 0.1 and 0.3 fail).
+constexpr double kCoordinationFactor = 3.5;
 
 // Binary limit of any oscillator with stiffness k [1/s^2] and damping c
 // [1/s] per unit mass (w0^2 = k, beta = c/2).
@@ -43,6 +51,13 @@ inline double criticalTimestep(double tc, double e)
     return 2.0 * tc * (std::sqrt(kPi * kPi + 2.0 * L * L) - L) / (kPi * kPi + L * L);
 }
 
+// The guard's timestep for an oscillator: the binary limit of one
+// kCoordinationFactor times stiffer and more damped.
+inline double stableTimestepOf(double k, double c)
+{
+    return criticalTimestepOf(kCoordinationFactor * k, kCoordinationFactor * c);
+}
+
 // Binary limit of a type pair: the stiffer of its normal and tangential
 // oscillators.
 inline double criticalTimestep(const ContactParameters& p)
@@ -56,6 +71,19 @@ inline double criticalTimestep(const UnitCoefficients& u)
 {
     return std::min(criticalTimestepOf(u.kn, u.cn),
                     criticalTimestepOf(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio));
+}
+
+// The guard of a type pair (Pournin's coefficients), and of any
+// coefficients per unit meff (exactRestitution's, exactCollision's step law).
+inline double stableTimestep(const UnitCoefficients& u)
+{
+    return std::min(stableTimestepOf(u.kn, u.cn),
+                    stableTimestepOf(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio));
+}
+
+inline double stableTimestep(const ContactParameters& p)
+{
+    return stableTimestep(pourninUnitCoefficients(p));
 }
 
 }  // namespace viscoelastic

@@ -55,11 +55,11 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
             // the stiffnesses actually applied.
             const UnitCoefficients applied{c.normal.kStep, c.normal.cStep, kTangentialMassRatio * c.tangential.kStep,
                                            kTangentialMassRatio * c.tangential.cStep};
-            const double stable = kMultiContactFactor * criticalTimestep(applied);
+            const double stable = stableTimestep(applied);
             if (dt > stable)
                 lmp->error->all(FLERR, format("%s: exactCollision: timestep %g s exceeds the stable timestep %g s of "
-                                              "type pair (%d,%d) (tc %g s, en %g, et %g): half the binary stability "
-                                              "limit of the applied law; use timestep < %g",
+                                              "type pair (%d,%d) (tc %g s, en %g, et %g): the multi-contact limit of "
+                                              "the applied law; use timestep < %g",
                                               caller, dt, stable, i, j, p.tc, p.en, p.et, stable)
                                            .c_str());
             report += format("  (%d,%d): tc %g s, en %g, et %g%s: tc/dt %.2f; step law kn/meff %.6g 1/s^2, "

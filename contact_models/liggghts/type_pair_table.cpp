@@ -98,7 +98,7 @@ constexpr double kAccuracyWarning = 0.01;
 
 struct Derived {
     UnitCoefficients unit{};
-    double stableTimestep = 0;           // kMultiContactFactor x binary limit of `unit`
+    double stableTimestep = 0;           // the multi-contact guard of `unit` (stability.h)
     DiscreteCollision nominal;           // Pournin's coefficients at this dt, phase-averaged
     double continuous = 0;               // restitution of the continuous law
     std::optional<ExactSolution> exact;  // exactRestitution on
@@ -113,24 +113,24 @@ Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exac
     d.continuous = continuousRestitution(p.tc, p.en, limitForce);
     if (!exact) {
         d.unit = pourninUnitCoefficients(p);
-        d.stableTimestep = kMultiContactFactor * criticalTimestep(p);
+        d.stableTimestep = stableTimestep(p);
         return d;
     }
     d.exact = exactUnitCoefficients(p, dt, limitForce);
     d.unit = d.exact->unit;
-    d.stableTimestep = kMultiContactFactor * criticalTimestep(d.unit);  // the corrected oscillators
+    d.stableTimestep = stableTimestep(d.unit);  // the corrected oscillators
     return d;
 }
 
 void guardTimestep(LAMMPS_NS::LAMMPS* lmp, const ContactParameters& p, int i, int j, double dt, const char* caller)
 {
-    const double dtCrit = criticalTimestep(p);
-    if (dt > kMultiContactFactor * dtCrit)
+    const double dtCrit = criticalTimestep(p), stable = stableTimestep(p);
+    if (dt > stable)
         lmp->error->all(FLERR, format("%s: timestep %g s exceeds the stable timestep %g s of type pair (%d,%d) "
-                                      "(tc %g s, en %g, et %g): half the binary stability limit %g s, as beads with "
-                                      "many simultaneous contacts become unstable above it; use timestep < %g",
-                                      caller, dt, kMultiContactFactor * dtCrit, i, j, p.tc, p.en, p.et, dtCrit,
-                                      kMultiContactFactor * dtCrit)
+                                      "(tc %g s, en %g, et %g; binary stability limit %g s): beads with many "
+                                      "simultaneous contacts become unstable above it (the binary limit of a "
+                                      "contact %g times stiffer and more damped); use timestep < %g",
+                                      caller, dt, stable, i, j, p.tc, p.en, p.et, dtCrit, kCoordinationFactor, stable)
                                    .c_str());
 }
 
@@ -152,7 +152,7 @@ void checkExact(LAMMPS_NS::LAMMPS* lmp, const Derived& d, int i, int j, double d
                                    .c_str());
     if (dt > d.stableTimestep)
         lmp->error->all(FLERR, format("%s: exactRestitution: timestep %g s exceeds the stable timestep %g s "
-                                      "(half the binary limit) of the corrected coefficients of type pair (%d,%d)",
+                                      "(the multi-contact limit) of the corrected coefficients of type pair (%d,%d)",
                                       caller, dt, d.stableTimestep, i, j)
                                    .c_str());
 }
@@ -247,7 +247,10 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
     for (int i = 1; i <= maxType; ++i)
         for (int j = i; j <= maxType; ++j) {  // symmetric: (j,i) is (i,j)
             const ContactParameters& p = params[i * stride_ + j];
-            guardTimestep(lmp, p, i, j, dt, caller);
+            // the guard applies to the law in use: with exactRestitution the
+            // corrected coefficients (checkExact), with exactCollision its
+            // step law (loadCollision)
+            if (!exact && !collision) guardTimestep(lmp, p, i, j, dt, caller);
             const Derived d = derive(p, dt, limitForce, exact);
             checkExact(lmp, d, i, j, dt, caller);
             unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;

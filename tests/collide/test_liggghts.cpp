@@ -317,19 +317,22 @@ TEST(BadInput, MissingPropertyIsNamed)
     EXPECT_NE(out.find("ERROR"), std::string::npos);
 }
 
-// Binary limit 0.487 tc for e = 0.46; runs stop above half of it (many
-// simultaneous contacts): above the binary limit and between the two.
+// Binary limit 0.487 tc for e = 0.46; runs stop above the multi-contact
+// guard, 0.2138 tc (core/stability.h): above the binary limit and between
+// the two, just above the guard too.
 TEST(BadInput, TimestepAboveStableLimitStopsNamingLimitAndTypePair)
 {
     Case c = headOn(Geometry::Pair, false);
-    for (double ratio : {0.6, 0.3}) {
-        c.dt = ratio * c.params.tc;
+    const double guard = viscoelastic::stableTimestep(c.params);
+    EXPECT_NEAR(guard / c.params.tc, 0.2138, 1e-4);
+    for (double dt : {0.6 * c.params.tc, 0.3 * c.params.tc, 1.01 * guard}) {
+        c.dt = dt;
         const std::string out = failureOf(collisionInput(c, options("dt"), "run 10\n"), "dt");
         EXPECT_NE(out.find("ERROR"), std::string::npos) << out;
-        EXPECT_TRUE(std::regex_search(out, std::regex("exceeds the stable timestep 2\\.43[0-9]*e-05 s of type pair \\(1,1\\)")))
+        EXPECT_TRUE(std::regex_search(out, std::regex("exceeds the stable timestep 2\\.13[0-9]*e-05 s of type pair \\(1,1\\)")))
             << out;
     }
-    c.dt = 0.24 * c.params.tc;  // below half the limit: runs
+    c.dt = 0.99 * guard;  // below the guard: runs
     EXPECT_EQ(failureOf(collisionInput(c, options("dt"), "run 10\n"), "dt"), "");
 }
 

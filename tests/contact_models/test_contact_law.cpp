@@ -150,8 +150,8 @@ TEST_F(ContactLaw, LimitIsTheBinaryJuryLimitAndTheGuard)
     const std::vector<double> v = numbers(l[1], ',');
     ASSERT_EQ(v.size(), 7u);
     const double binary = criticalTimestep(kBead);
-    const double expected[7] = {1e-4, 0.56, 0.46, binary, kMultiContactFactor * binary, binary / 1e-4,
-                                kMultiContactFactor * binary / 1e-4};
+    const double guard = stableTimestep(kBead);
+    const double expected[7] = {1e-4, 0.56, 0.46, binary, guard, binary / 1e-4, guard / 1e-4};
     for (int k = 0; k < 7; ++k) EXPECT_NEAR(v[k], expected[k], 1e-11 * expected[k]) << k;
 
     // et defaults to en, tc to bead_tc unless given

@@ -111,7 +111,39 @@ TEST(Timestep, ClosedFormAgreesWithTheLimitOfTheCoefficients)
         EXPECT_NEAR(criticalTimestep(pourninUnitCoefficients(p)), criticalTimestep(p), 1e-12 * p.tc);
         EXPECT_DOUBLE_EQ(criticalTimestep(p), std::min(criticalTimestep(p.tc, p.en), criticalTimestep(p.tc, p.et)));
     }
-    EXPECT_DOUBLE_EQ(kMultiContactFactor, 0.5);  // the guard README and the ERROR text call "half"
+}
+
+// The guard against the measured onset of multi-contact instability (stock
+// hooke/stiffness with our constants; benchmarks/results/guard_loaded/: the
+// settled 2009-bead column under 1 g and 30 g, the first dt/tc at which beads
+// are lost or the kinetic energy ends 10 times above that at tc/10; the 6 mm
+// drum over 0.2 s). It must stop every failing run. Half the binary limit
+// (the former guard) would have let en 0.1 and en 0.3 fail.
+TEST(Timestep, GuardStopsEveryMeasuredMultiContactFailure)
+{
+    struct Onset {
+        double en, lastStable, firstFailing;
+    };
+    const double tc = 1e-4;
+    const Onset column[] = {{0.1, 0.1, 0.125}, {0.3, 0.175, 0.2}, {0.56, 0.25, 0.275}, {0.95, 0.3, 0.35}};
+    int halfWouldFail = 0;
+    for (const Onset& o : column) {
+        SCOPED_TRACE(testing::Message() << "column, en " << o.en);
+        const double guard = stableTimestep(ContactParameters{tc, o.en, o.en, 0.5});
+        EXPECT_LT(guard, 0.95 * o.firstFailing * tc);  // with a margin of at least 5 %
+        halfWouldFail += 0.5 * criticalTimestep(tc, o.en) > o.firstFailing * tc;
+        // one Z for every en: the stiffening that makes each run's dt critical
+        const UnitCoefficients u = pourninUnitCoefficients(tc, o.en, 1.0);
+        const auto zAt = [&](double dt) {  // Z with criticalTimestepOf(Z k, Z c) = dt: Z (k dt^2 + 2 c dt) = 4
+            return 4.0 / (u.kn * dt * dt + 2.0 * u.cn * dt);
+        };
+        EXPECT_LT(zAt(o.firstFailing * tc), kCoordinationFactor);
+        EXPECT_GT(zAt(o.lastStable * tc), 3.2);  // every stable run: above the failing runs' 3.12
+    }
+    EXPECT_EQ(halfWouldFail, 2);
+    // the turning drum (Table 3.1: beads 0.56, drum 0.46; and en 0.3 everywhere) fails later
+    EXPECT_LT(std::min(stableTimestep(kBeads), stableTimestep(kDrum)), 0.3 * tc);
+    EXPECT_LT(stableTimestep(ContactParameters{tc, 0.3, 0.3, 0.5}), 0.28 * tc);
 }
 
 // Brute force: the recurrence of one contact (no separation) grows without

@@ -5,6 +5,7 @@
 //   collide sweep-dt    error against tc/dt, with the observed order
 //   collide sweep-angle oblique impacts at increasing incidence (Chung & Ooi 2011, test 4)
 //   collide recurrence  the integrator's recurrence alone: restitution vs dt/tc
+//   collide law-map     the continuous law's tangential restitution vs angle and mu
 // Material defaults (tc, en, et, mu, bead size and density) come from the
 // `variable` lines of --materials (inputs/materials.in: Table 3.1).
 #include <CLI/CLI.hpp>
@@ -195,6 +196,18 @@ int runCase(Options& o)
     return 0;
 }
 
+// Least-squares slope of y against x (an observed order from logs); NaN below two points.
+double slope(const std::vector<double>& x, const std::vector<double>& y)
+{
+    if (x.size() < 2) return NAN;
+    double mx = 0, my = 0;
+    for (size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
+    mx /= x.size(), my /= x.size();
+    double sxy = 0, sxx = 0;
+    for (size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+    return sxy / sxx;
+}
+
 int runSweepDt(Options& o, const std::vector<double>& ratios)
 {
     o.finish();
@@ -207,7 +220,7 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
     std::ostringstream csv;
     csv << "tc_over_dt,dt,restitution,restitution_rel_err,predicted_restitution,duration_err_steps,"
            "duration_rel_err,tangential_restitution,tangential_rel_err\n";
-    std::vector<double> logDt, logErr;
+    std::vector<double> logDt, logErr, logDtT, logErrT;
     for (double ratio : ratios) {
         o.c.dt = o.c.params.tc / ratio;
         const Outcome lig = runAveraged(o, o.phases);
@@ -231,19 +244,10 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
             << relErr(lig.duration, ref.outcome.duration) << "," << lig.tangentialRestitution << "," << tErr
             << "\n";
         if (eErr != 0.0) logDt.push_back(std::log(o.c.dt)), logErr.push_back(std::log(std::fabs(eErr)));
+        if (oblique && tErr != 0.0) logDtT.push_back(std::log(o.c.dt)), logErrT.push_back(std::log(std::fabs(tErr)));
     }
-    // least-squares slope of log|error| against log dt
-    double order = NAN;
-    if (logDt.size() >= 2) {
-        double mx = 0, my = 0;
-        for (size_t i = 0; i < logDt.size(); ++i) mx += logDt[i], my += logErr[i];
-        mx /= logDt.size(), my /= logDt.size();
-        double sxy = 0, sxx = 0;
-        for (size_t i = 0; i < logDt.size(); ++i)
-            sxy += (logDt[i] - mx) * (logErr[i] - my), sxx += (logDt[i] - mx) * (logDt[i] - mx);
-        order = sxy / sxx;
-    }
-    std::printf("observed order of the restitution error: %.2f\n", order);
+    std::printf("observed order of the restitution error: %.2f\n", slope(logDt, logErr));
+    if (oblique) std::printf("observed order of the tangential restitution error: %.2f\n", slope(logDtT, logErrT));
     const std::string csvFile = o.csv.empty() ? "sweep_dt.csv" : o.csv;
     std::ofstream(csvFile) << csv.str();
     if (!o.png.empty()) {
@@ -257,6 +261,44 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
            << "'' every ::1 using 1:(abs($7)) with linespoints lw 2 title 'contact duration'";
         if (oblique) gp << ", '' every ::1 using 1:(abs($9)) with linespoints lw 2 title 'tangential restitution'";
         gp << "\n";
+        gnuplot(gp.str());
+        std::printf("chart: %s\n", o.png.c_str());
+    }
+    return 0;
+}
+
+Case atIncidence(Case c, double angle, double speed);
+
+// What the continuous law (the reference, no LIGGGHTS) restitutes
+// tangentially against the incidence angle, one line per friction
+// coefficient: et holds only where the contact sticks and et = en.
+int runLawMap(Options& o, const std::vector<double>& mus, const std::vector<double>& angles, double speed)
+{
+    o.finish();
+    const std::string csvFile = o.csv.empty() ? "law_map.csv" : o.csv;
+    std::ofstream csv(csvFile);
+    csv << "mu,angle,tangential_restitution,requested_et\n";
+    std::printf("%8s %8s %12s\n", "mu", "angle", "et (law)");
+    for (double mu : mus)
+        for (double a : angles) {
+            Case c = atIncidence(o.c, a, speed);
+            c.params.mu = mu;
+            const double et = reference(c).outcome.tangentialRestitution;
+            std::printf("%8g %8g %12.4f\n", mu, a, et);
+            csv << mu << "," << a << "," << et << "," << c.params.et << "\n";
+        }
+    csv.close();
+    if (!o.png.empty()) {
+        std::ostringstream gp;
+        gp << "set terminal pngcairo size 900,600\nset output '" << o.png << "'\nset datafile separator ','\n"
+           << "set grid\nset xlabel 'incidence angle from the normal [deg]'\nset ylabel 'tangential restitution'\n"
+           << "set title \"the continuous law: " << name(o.c.geometry) << ", tangential " << name(o.c.tangential)
+           << ", limitForce " << (o.c.limitForce ? "on" : "off") << ", en " << o.c.params.en << ", et "
+           << o.c.params.et << ", |v| = " << speed << " m/s\" font ',10'\nset key bottom left\nplot ";
+        for (size_t k = 0; k < mus.size(); ++k)
+            gp << (k ? ", " : "") << "'" << csvFile << "' every ::1 using 2:($1 == " << mus[k]
+               << " ? $3 : NaN) with linespoints lw 2 title 'mu " << mus[k] << "'";
+        gp << ", " << o.c.params.et << " with lines dt 2 lc 'black' title 'requested et'\n";
         gnuplot(gp.str());
         std::printf("chart: %s\n", o.png.c_str());
     }
@@ -375,6 +417,15 @@ int main(int argc, char** argv)
     ang->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
     ang->add_option("--png", o.png, "write the chart as PNG");
 
+    std::vector<double> mus{0.1, 0.2, 0.5, 0.95, 10};
+    std::vector<double> mapAngles{2, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 60, 70, 80};
+    CLI::App* map = app.add_subcommand("law-map", "the continuous law's tangential restitution vs angle and mu (no LIGGGHTS)");
+    addCaseOptions(map, o);
+    map->add_option("--mus", mus, "friction coefficients")->delimiter(',')->capture_default_str();
+    map->add_option("--angles", mapAngles, "incidence angles from the normal [deg]")->delimiter(',')->capture_default_str();
+    map->add_option("--speed", speed, "impact speed [m/s]")->capture_default_str();
+    map->add_option("--png", o.png, "write the chart as PNG");
+
     std::vector<double> fractions{0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
     CLI::App* rec = app.add_subcommand("recurrence", "the integrator's recurrence only: restitution vs dt/tc, CSV");
     addContactOptions(rec, o);
@@ -384,6 +435,7 @@ int main(int argc, char** argv)
     try {
         if (*rec) { o.finish(); return runRecurrence(o, fractions); }
         if (*one) return runCase(o);
+        if (*map) return runLawMap(o, mus, mapAngles, speed);
         if (*dt) { o.phases = std::max(o.phases, 1); return runSweepDt(o, ratios); }
         return runSweepAngle(o, angles, speed);
     } catch (const std::exception& e) {

@@ -116,7 +116,7 @@ int stock(const Materials& m, std::optional<double> uniform, bool exact, double 
 int limit(double tc, double en, double et)
 {
     const double binary = criticalTimestep(ContactParameters{tc, en, et, 0.0});
-    const double guard = kMultiContactFactor * binary;
+    const double guard = stableTimestep(ContactParameters{tc, en, et, 0.0});
     std::printf("tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc\n");
     std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", tc, en, et, binary, guard, binary / tc, guard / tc);
     return 0;
