@@ -27,6 +27,7 @@
 // its phase (fresh, touching, ended), kept in the contact history.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -88,7 +89,8 @@ inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
     return s;
 }
 
-enum class CollisionPhase { fresh = 0, touching = 1, ended = 2 };
+// `attractive`: still touching, past the zero of the force (limitForce off).
+enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3 };
 
 // What a contact keeps between steps.
 struct CollisionState {
@@ -103,6 +105,11 @@ struct CollisionStep {
     double force = 0;        // per unit mass, along the normal (positive: repulsive)
     double sinceStart = -1;  // first step: time since first touch [s] (else < 0)
     double endsAfter = -1;   // last step: time from this step to the end of the contact [s] (else < 0)
+    // The step in which the force turns attractive (limitForce off): what the
+    // law's friction bound mu |Fn| holds over the step beyond mu |force|, per
+    // unit mass and mu (the step's net force nets its repulsive and attractive
+    // parts; sliding, the law's friction impulse is mu times the integral of |Fn|).
+    double frictionExcess = 0;
 };
 
 namespace detail {
@@ -160,6 +167,29 @@ double bracketedNewton(FS fs, double lo, double hi)
 // under way, uncorrected.
 constexpr double kFreshTouchSteps = 1.5;
 
+// limitForce off: the first step whose kick is attractive (force < 0). The
+// continuous overlap rate is least, u(z), where the force turns. The kicks
+// before this step sum to the repulsive impulse down to its incoming rate v,
+// those after it to the attractive impulse from its outgoing rate v - F dt;
+// this step holds the rest, |v - u(z)| + |u(z) - (v - F dt)|, so that the
+// steps' friction bounds sum to mu times the law's integral of |Fn| exactly.
+// The last step of a contact still touching holds the turn whatever its kick
+// (the force ends attractive, -c en v0).
+inline void markAttraction(const StepLaw& law, CollisionState& state, const Motion& now, double v, CollisionStep& r,
+                           bool last = false)
+{
+    if (law.forceEnds || state.phase != CollisionPhase::touching || !(r.force < 0.0 || last)) return;
+    state.phase = CollisionPhase::attractive;
+    const double dt = law.dt;
+    const auto force = [&](double tau) { return law.o.ending(law.o.after(now, tau), true); };
+    double lo = -dt, hi = dt;
+    while (force(lo) <= 0.0 && lo > -4.0 * dt) lo -= dt;
+    while (force(hi) >= 0.0 && hi < 4.0 * dt) hi += dt;
+    if (!(force(lo) > 0.0 && force(hi) < 0.0)) return;  // no zero near: not a binary contact's
+    const double least = law.o.after(now, detail::bracketedRoot(force, lo, hi)).u;
+    r.frictionExcess = (std::fabs(v - least) + std::fabs(least - (v - r.force * dt))) / dt - std::fabs(r.force);
+}
+
 // One step of a contact under `exactCollision`: x the overlap at this step,
 // v the overlap rate at the half step before (positive while approaching).
 inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v)
@@ -180,13 +210,15 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         // common case costs two products and a comparison over the plain law.
         const double vUsed = v - state.previousOffset / dt;
         state.previousOffset = 0.0;
-        if (state.phase == CollisionPhase::touching && law.endX * x + law.endV * vUsed > 0.0) {
+        const bool attractive = state.phase == CollisionPhase::attractive;
+        if ((attractive || state.phase == CollisionPhase::touching) && law.endX * x + law.endV * vUsed > 0.0) {
             r.force = (v - vUsed) / dt + law.kStep * x + law.cStep * vUsed;
+            if (r.force < 0.0 && !attractive) markAttraction(law, state, {x, law.uX * x + law.uV * vUsed}, v, r);
             return r;
         }
         now = {x, law.uX * x + law.uV * vUsed};
     }
-    state.phase = CollisionPhase::touching;
+    if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
     const auto endingAndSlope = [&](double tau) {
         const Motion m = law.o.after(now, tau);
         const double acceleration = -law.o.k * m.x - law.o.c * m.u;
@@ -196,13 +228,15 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     if (endingAndSlope(dt).first > 0.0) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
         r.force = (v - (next - x) / dt) / dt;
+        markAttraction(law, state, now, v, r);
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
     const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
-    state.phase = CollisionPhase::ended;
     r.endsAfter = tau;
     r.force = (v - law.o.after(now, tau).u) / dt;
+    markAttraction(law, state, now, v, r, true);
+    state.phase = CollisionPhase::ended;
     return r;
 }
 

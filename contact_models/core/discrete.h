@@ -6,9 +6,10 @@
 // motion of one contact (overlap x, overlap rate v, per unit meff) that is
 //     v' = v - dt (kn x + cn v),   x' = x + dt v'
 // and the same for a sticking tangential contact (overlap xi, velocity w, per
-// unit tangential mass). The tangential spring starts at the first
-// overlapping step with a whole step of displacement (`pournin` and `history`
-// both add vt dt on that step), and stops with the normal contact.
+// unit tangential mass). At the first overlapping step stock `history` adds a
+// whole step of tangential displacement, vt dt; `pournin` adds only the part
+// of the step since the first touch (SpringStart). The spring stops with the
+// normal contact.
 //
 // A contact starts between two steps: its first overlap is phase * v0 * dt,
 // with the phase uniform in (0, 1] over the many contacts of a flow. Every
@@ -24,6 +25,11 @@
 #include "pournin.h"
 
 namespace viscoelastic {
+
+// How the tangential spring of a contact begins: stock `history` adds vt dt
+// at the first overlapping step; `pournin` adds vt times the time since the
+// first touch (law.h, timeSinceTouch), in phase with the normal overlap.
+enum class SpringStart { wholeStep, atTouch };
 
 // Outcome of a collision starting with unit overlap rate and unit tangential
 // velocity. Linear law: it depends on neither the speeds nor the mass.
@@ -44,12 +50,14 @@ struct PhaseCollision {
     bool sameRegime(const PhaseCollision& o) const { return steps == o.steps && firstCut == o.firstCut; }
 };
 
-inline PhaseCollision discreteCollisionAtPhase(const UnitCoefficients& u, double dt, bool limitForce, double phase)
+inline PhaseCollision discreteCollisionAtPhase(const UnitCoefficients& u, double dt, bool limitForce, double phase,
+                                               SpringStart start = SpringStart::wholeStep)
 {
     const double mt = kTangentialMassRatio;
     const int maxSteps = static_cast<int>(50.0 * kPi / (std::sqrt(u.kn) * dt)) + 100;  // 50 tc
     double x = phase * dt, v = 1.0;  // normal overlap and rate (v0 = 1)
-    double xi = 0.0, w = 1.0;        // tangential overlap and velocity (w0 = 1)
+    // tangential overlap and velocity (w0 = 1); the first step adds dt w
+    double xi = start == SpringStart::atTouch ? (phase - 1.0) * dt : 0.0, w = 1.0;
     PhaseCollision r;
     double peak = x;
     while (x > 0.0 && r.steps < maxSteps) {
@@ -90,17 +98,17 @@ inline void accumulate(DiscreteCollision& sum, const DiscreteCollision& d, doubl
 // Adds the integral over the phases [a, b] of an outcome whose regime is
 // known at both ends: one regime -> linear, the midpoint is exact; otherwise
 // bisect towards the breakpoint(s).
-inline void integrateOverPhase(const UnitCoefficients& u, double dt, bool limitForce, double a,
+inline void integrateOverPhase(const UnitCoefficients& u, double dt, bool limitForce, SpringStart start, double a,
                                const PhaseCollision& ra, double b, const PhaseCollision& rb, DiscreteCollision& sum)
 {
     if (ra.sameRegime(rb) || b - a < 1e-13) {
-        accumulate(sum, discreteCollisionAtPhase(u, dt, limitForce, 0.5 * (a + b)).outcome, b - a);
+        accumulate(sum, discreteCollisionAtPhase(u, dt, limitForce, 0.5 * (a + b), start).outcome, b - a);
         return;
     }
     const double m = 0.5 * (a + b);
-    const PhaseCollision rm = discreteCollisionAtPhase(u, dt, limitForce, m);
-    integrateOverPhase(u, dt, limitForce, a, ra, m, rm, sum);
-    integrateOverPhase(u, dt, limitForce, m, rm, b, rb, sum);
+    const PhaseCollision rm = discreteCollisionAtPhase(u, dt, limitForce, m, start);
+    integrateOverPhase(u, dt, limitForce, start, a, ra, m, rm, sum);
+    integrateOverPhase(u, dt, limitForce, start, m, rm, b, rb, sum);
 }
 
 }  // namespace detail
@@ -108,17 +116,18 @@ inline void integrateOverPhase(const UnitCoefficients& u, double dt, bool limitF
 // Mean over the contact-start phase, uniform in (0, 1]. Sixteen initial
 // intervals: a regime that starts and ends inside one of them (it would
 // need two breakpoints within 1/16 of a step) is not resolved.
-inline DiscreteCollision phaseAveragedCollision(const UnitCoefficients& u, double dt, bool limitForce)
+inline DiscreteCollision phaseAveragedCollision(const UnitCoefficients& u, double dt, bool limitForce,
+                                                SpringStart start = SpringStart::wholeStep)
 {
     constexpr int kIntervals = 16;
     constexpr double kSmallestPhase = 1e-12;  // the phase 0 itself is no contact
     DiscreteCollision sum;
     double a = kSmallestPhase;
-    PhaseCollision ra = discreteCollisionAtPhase(u, dt, limitForce, a);
+    PhaseCollision ra = discreteCollisionAtPhase(u, dt, limitForce, a, start);
     for (int i = 1; i <= kIntervals; ++i) {
         const double b = static_cast<double>(i) / kIntervals;
-        const PhaseCollision rb = discreteCollisionAtPhase(u, dt, limitForce, b);
-        detail::integrateOverPhase(u, dt, limitForce, a, ra, b, rb, sum);
+        const PhaseCollision rb = discreteCollisionAtPhase(u, dt, limitForce, b, start);
+        detail::integrateOverPhase(u, dt, limitForce, start, a, ra, b, rb, sum);
         a = b, ra = rb;
     }
     const double width = 1.0 - kSmallestPhase;
@@ -133,11 +142,12 @@ inline DiscreteCollision phaseAveragedCollision(const ContactParameters& p, doub
 
 // Mean over the phases (k + 0.5) / phases, k = 0..phases-1: what a validation
 // run sampling those phases measures.
-inline DiscreteCollision sampledCollision(const UnitCoefficients& u, double dt, bool limitForce, int phases)
+inline DiscreteCollision sampledCollision(const UnitCoefficients& u, double dt, bool limitForce, int phases,
+                                          SpringStart start = SpringStart::wholeStep)
 {
     DiscreteCollision sum;
     for (int k = 0; k < phases; ++k)
-        detail::accumulate(sum, discreteCollisionAtPhase(u, dt, limitForce, (k + 0.5) / phases).outcome,
+        detail::accumulate(sum, discreteCollisionAtPhase(u, dt, limitForce, (k + 0.5) / phases, start).outcome,
                            1.0 / phases);
     return sum;
 }

@@ -115,7 +115,9 @@ inline UnitCoefficients normalOnly(double tcPrime, double lnEnPrime)
 
 }  // namespace detail
 
-inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt, bool limitForce)
+// `start`: how the tangential model in use begins its spring (discrete.h).
+inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt, bool limitForce,
+                                           SpringStart start = SpringStart::wholeStep)
 {
     ExactSolution s;
     s.requested = p, s.dt = dt, s.limitForce = limitForce;
@@ -157,7 +159,9 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
         v.ct = mt * c;
         return v;
     };
-    auto et = [&](double c) { return phaseAveragedCollision(tangential(c), dt, limitForce).tangentialRestitution; };
+    auto et = [&](double c) {
+        return phaseAveragedCollision(tangential(c), dt, limitForce, start).tangentialRestitution;
+    };
     double lo = 0.0, hi = 0.999 / dt;  // damping per unit tangential mass; 1 - c dt > 0
     if (et(lo) <= p.et) {
         if (et(lo) < p.et * (1.0 - 1e-6)) s.undampedTangentialRestitution = et(lo);
@@ -172,7 +176,7 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
         (et(mid) > p.et ? lo : hi) = mid;
     }
     s.unit = tangential(0.5 * (lo + hi));
-    s.achieved = phaseAveragedCollision(s.unit, dt, limitForce);
+    s.achieved = phaseAveragedCollision(s.unit, dt, limitForce, start);
     return s;
 }
 

@@ -26,14 +26,14 @@ namespace viscoelastic {
 // dashpots in parallel, so a dense packing goes unstable before a binary
 // contact does. Measured (benchmarks/README.md, stability map: the settled
 // column under its own weight and under 30 times it, stock hooke/stiffness
-// with our constants, en 0.1-0.95): the onset is the binary limit of an
-// oscillator Z = 3.1-3.3 times stiffer and more damped, the same Z for every
-// en (the last stable runs need Z >= 3.28, the first failing ones Z <= 3.12);
-// the turning drum fails later (Z 1.8-2.1). The guard takes Z = 3.5, 12 %
-// above the largest Z of a failing run: its timestep lies 6-15 % below the
-// first failing one of each en. A fixed fraction of the binary limit cannot
-// do this: the onset lies at 0.43 of it for en 0.1 and 0.56 for en 0.95
-// (the former guard, half of it, let en 0.1 and 0.3 fail).
+// with our constants, en 0.1-0.95): the first failing run of each en and
+// load is at the binary limit of an oscillator Z = 2.4-3.1 times stiffer and
+// more damped, the last stable one at Z >= 3.1; the turning drum fails later
+// (Z 1.8-2.1). The guard takes Z = 3.5, 12 % above the largest Z of a
+// failing run: its timestep lies 6-17 % below the first failing one of each
+// en and load. A fixed fraction of the binary limit cannot do this: the
+// onset lies at 0.43 of it for en 0.1 and 0.56-0.64 for en 0.95 (the former
+// guard, half of it, let en 0.1 and 0.3 fail).
 constexpr double kCoordinationFactor = 3.5;
 
 // Binary limit of any oscillator with stiffness k [1/s^2] and damping c

@@ -57,6 +57,7 @@ public:
         hsetup->add_history_value("viscoelastic_offset", "0");
         hsetup->add_history_value("viscoelastic_since_start", "0");
         hsetup->add_history_value("viscoelastic_ends_after", "0");
+        hsetup->add_history_value("viscoelastic_friction_excess", "0");
         cmb->add_history_offset("viscoelastic_collision", history_offset);
     }
 
@@ -66,8 +67,12 @@ public:
         if (exactCollision && cmb->get_history_offset("pournin_xi") < 0)
             error->all(FLERR, (std::string(caller) + ": exactCollision on needs `tangential pournin` (it "
                                "corrects the tangential spring at the start and end of each contact)").c_str());
+        // `pournin` starts a contact's spring at its first touch, stock `history` a step earlier
+        const viscoelastic::SpringStart start = cmb->get_history_offset("pournin_xi") >= 0
+                                                    ? viscoelastic::SpringStart::atTouch
+                                                    : viscoelastic::SpringStart::wholeStep;
         table.load(lmp, registry, registry.max_type(), limitForce, exactRestitution, caller,
-                   wallMassAsParticle && cmb->is_wall(), exactCollision);
+                   wallMassAsParticle && cmb->is_wall(), exactCollision, start);
         if (exactCollision) table.loadCollision(lmp, limitForce, wallMassAsParticle, exactRestitution, caller, cmb);
     }
 
@@ -102,7 +107,7 @@ public:
         if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
         if (!exactCollision || !scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
-        for (int d = 0; d < 4; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
+        for (int d = 0; d < 5; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -141,7 +146,7 @@ private:
         const CollisionStep step =
             exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state, sidata.deltan, -sidata.vn);
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
-        h[2] = step.sinceStart, h[3] = step.endsAfter;
+        h[2] = step.sinceStart, h[3] = step.endsAfter, h[4] = meff * step.frictionExcess;
         return meff * step.force;
     }
 

@@ -61,12 +61,16 @@ public:
         state.normalForce = h[6];
         const Vec3 normal(sidata.en[0], sidata.en[1], sidata.en[2]);  // LIGGGHTS calls the contact normal `en`
         const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
-        const double limit = viscoelastic::frictionLimit(coeffFrict[sidata.itype][sidata.jtype], sidata.Fn);
         const bool advance = sidata.computeflag && sidata.shearupdate;
 
         // exactCollision: model viscoelastic's table has the tangential law,
-        // and its step's outcome is in the contact history.
+        // and its step's outcome is in the contact history (with the excess
+        // of the law's mu |Fn| over the step where the force turns attractive).
         const viscoelastic::TypePairTable* const t = table();
+        const double mu = coeffFrict[sidata.itype][sidata.jtype];
+        const double limit = t && t->exactCollision()
+            ? viscoelastic::frictionLimit(mu, std::fabs(sidata.Fn) + collisionStep(sidata).frictionExcess)
+            : viscoelastic::frictionLimit(mu, sidata.Fn);
         const Vec3 Ft = t && t->exactCollision()
             ? viscoelastic::pourninExactTangentialForce(state, normal, vt, contactPointMass(sidata),
                                                         t->collision(sidata.itype, sidata.jtype).tangential,
@@ -130,7 +134,7 @@ private:
     {
         const double* const h = &sidata.contact_history[collision_offset];
         viscoelastic::CollisionStep s;
-        s.sinceStart = h[2], s.endsAfter = h[3];
+        s.sinceStart = h[2], s.endsAfter = h[3], s.frictionExcess = h[4];  // the excess as a force [N]
         return s;
     }
 

@@ -106,17 +106,17 @@ struct Derived {
 
 // The exact solve takes 1-60 ms per type pair (tc/10 to tc/200): the pair
 // style and each wall solve for themselves rather than share a cache.
-Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exact)
+Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exact, SpringStart start)
 {
     Derived d;
-    d.nominal = phaseAveragedCollision(p, dt, limitForce);
+    d.nominal = phaseAveragedCollision(pourninUnitCoefficients(p), dt, limitForce, start);
     d.continuous = continuousRestitution(p.tc, p.en, limitForce);
     if (!exact) {
         d.unit = pourninUnitCoefficients(p);
         d.stableTimestep = stableTimestep(p);
         return d;
     }
-    d.exact = exactUnitCoefficients(p, dt, limitForce);
+    d.exact = exactUnitCoefficients(p, dt, limitForce, start);
     d.unit = d.exact->unit;
     d.stableTimestep = stableTimestep(d.unit);  // the corrected oscillators
     return d;
@@ -228,7 +228,8 @@ TypePairTable::TypePairTable() { live_.push_back(this); }
 TypePairTable::~TypePairTable() { live_.erase(std::find(live_.begin(), live_.end(), this)); }
 
 void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce,
-                         bool exact, const char* caller, bool wallMassAsParticle, bool collision)
+                         bool exact, const char* caller, bool wallMassAsParticle, bool collision,
+                         SpringStart start)
 {
     if (exact && wallMassAsParticle)
         lmp->error->all(FLERR, format("%s: exactRestitution on contradicts wallMassAsParticle on: the coefficients "
@@ -251,7 +252,7 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
             // corrected coefficients (checkExact), with exactCollision its
             // step law (loadCollision)
             if (!exact && !collision) guardTimestep(lmp, p, i, j, dt, caller);
-            const Derived d = derive(p, dt, limitForce, exact);
+            const Derived d = derive(p, dt, limitForce, exact, start);
             checkExact(lmp, d, i, j, dt, caller);
             unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;
             report += reportLine(p, d, i, j, dt);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/collision.h"
+#include "core/discrete.h"
 #include "core/pournin.h"
 
 namespace LAMMPS_NS { class LAMMPS; }
@@ -30,9 +31,11 @@ public:
     // the coefficients in the log.
     // wallMassAsParticle (walls only) contradicts `exact`: an ERROR. With
     // `collision` (exactCollision on, loadCollision follows) the nominal
-    // law's accuracy is not warned about.
+    // law's accuracy is not warned about. `start`: how the tangential model
+    // begins its spring, for exactRestitution's tangential solve.
     void load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int maxType, bool limitForce, bool exact,
-              const char* caller, bool wallMassAsParticle = false, bool collision = false);
+              const char* caller, bool wallMassAsParticle = false, bool collision = false,
+              SpringStart start = SpringStart::wholeStep);
 
     const UnitCoefficients& unit(int i, int j) const { return unit_[i * stride_ + j]; }
 

@@ -53,7 +53,7 @@ class Stability(unittest.TestCase):
 
     def test_summary(self):
         binary = [{"en": 0.56, "dt_over_tc": f, "restitution_mean": m} for f, m in ((0.4, 0.9), (0.5, 1.01))]
-        column = [{"en": 0.56, "dt_over_tc": f, "model": model, "status": s, "guard": g}
+        column = [{"en": 0.56, "dt_over_tc": f, "model": model, "status": s, "guard": g, "load": 1}
                   for f, model, s, g in ((0.25, "hooke", "ok", "none"), (0.3, "hooke", "failed", "none"),
                                          (0.25, "viscoelastic", "ok", "none"), (0.3, "viscoelastic", "stopped", "error"))]
         drum = [{"en": "table", "dt_over_tc": 0.2, "model": "hooke", "status": "failed"}]
@@ -61,6 +61,10 @@ class Stability(unittest.TestCase):
         (row,) = stability.summary(binary, column, drum, limits, bead_en=0.56, drum_en=0.46)
         self.assertEqual((row["grow"], row["cfail"], row["dfail"], row["guard_column"]), (0.5, 0.3, 0.2, 0.3))
         self.assertEqual(row["guard"], "0.2613; drum 0.2436 (bead-drum en 0.46)")
+        # the stiffening at which the Jury limit of the Pournin contact is the first failing dt/tc:
+        # Z (w0^2 dt^2 + 4 beta dt) = 4, w0 tc = sqrt(pi^2 + ln^2 en), beta tc = -ln en
+        L = -math.log(0.56)
+        self.assertAlmostEqual(row["z"], 4 / ((math.pi ** 2 + L * L) * 0.3 ** 2 + 4 * L * 0.3), places=12)
         self.assertEqual(row["before"], "NO")  # the drum (Table 3.1 runs) failed at 0.2, below its guard 0.2436
         drum[0]["dt_over_tc"] = 0.3
         self.assertEqual(stability.summary(binary, column, drum, limits, 0.56, 0.46)[0]["before"], "yes")

@@ -136,8 +136,7 @@ class Collector:
         v.update(picture_rpm=rpm, picture=picture,
                  render_command=f"xvfb-run -a pvbatch tools/drum/render.py {rel(prefix)}")
         if self.need(prefix.with_name(prefix.name + ".restart")):
-            self.actions.append(lambda: harness.tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", prefix,
-                                                     "--out", a.out / picture, "--size", 900))
+            self.actions.append(lambda: harness.render(prefix, a.out / picture, "--size", 900))
         return v
 
     def yade(self, s, d):

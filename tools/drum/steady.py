@@ -214,7 +214,7 @@ class Study:
         out = self.docs / f"{rpm}rpm"
         out.mkdir(parents=True, exist_ok=True)
         harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}")
-        harness.tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", self.prefix(rpm), "--out", out / "picture.png")
+        harness.render(self.prefix(rpm), out / "picture.png")
         with open(restart, "rb") as src, gzip.open(out / "state.restart.gz", "wb", compresslevel=9) as dst:
             shutil.copyfileobj(src, dst)
         average = harness.read_csv(out / "series_average.csv")[0]

@@ -18,15 +18,15 @@ Derived physics is never computed here: ask a binary (`contact_law`,
 `collide`, `drum_metrics`).
 """
 
-from .core import (REPO, RunFailed, drum, drum_metric_table, drum_series, last_snapshot, liggghts, machine, materials, mpirun, options, post, say, snapshots, tool,
-                   tool_path)
+from .core import (REPO, RunFailed, drum, drum_metric_table, drum_series, last_snapshot, liggghts, machine, materials, mpirun, options, post, render, say, snapshots,
+                   tool, tool_path)
 from .logs import Log
 from .rounds import interleaved, median, median_ratio, spread
 from .tables import generated_note, markdown, read_csv, read_csv_text, write_csv, write_json, read_json
 from .charts import figure, save
 
 __all__ = [
-    "REPO", "RunFailed", "drum", "drum_metric_table", "drum_series", "last_snapshot", "liggghts", "machine", "materials", "mpirun", "options", "post", "say", "snapshots", "tool",
+    "REPO", "RunFailed", "drum", "drum_metric_table", "drum_series", "last_snapshot", "liggghts", "machine", "materials", "mpirun", "options", "post", "render", "say", "snapshots", "tool",
     "tool_path", "Log", "interleaved", "median", "median_ratio", "spread", "generated_note", "markdown",
     "read_csv", "read_csv_text", "write_csv", "write_json", "read_json", "figure", "save",
 ]

@@ -6,6 +6,7 @@ import platform
 import re
 import shutil
 import subprocess
+import time
 import sys
 from pathlib import Path
 
@@ -102,6 +103,19 @@ def machine():
     r = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "liggghts"], capture_output=True, text=True)
     return {"cores": os.cpu_count(), "arch": platform.machine(), "cpu": cpu,
             "liggghts": r.stdout if r.returncode == 0 and r.stdout else "?"}
+
+
+def render(prefix, out, *options, attempts=3):
+    """A ParaView picture of a run's last snapshot (`xvfb-run -a pvbatch tools/drum/render.py`).
+    On a loaded machine pvbatch can reach xvfb-run's X server before it accepts connections, or
+    two xvfb-run started at once can pick the same display: a failure is retried, the last one raised."""
+    for attempt in range(attempts):
+        try:
+            return tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", prefix, "--out", out, *options)
+        except RunFailed:
+            if attempt == attempts - 1:
+                raise
+            time.sleep(1.0 + attempt)
 
 
 def drum_series(prefix, dt, rpm, out=None, skip=None, until=None, average=None, batch_seconds=None):
