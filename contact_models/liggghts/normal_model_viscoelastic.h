@@ -49,16 +49,12 @@ public:
 
     void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
     {
-        // exactCollision's per-contact state, and what this step decided for
-        // `tangential pournin` (which finds it under "viscoelastic_collision").
-        // Only then: the contact history of restart files stays as it was.
+        // exactCollision's per-contact state (what a step decides for
+        // `tangential pournin` goes through the table). Only then: the
+        // contact history of restart files stays as it was.
         if (!exactCollision) return;
         history_offset = hsetup->add_history_value("viscoelastic_phase", "0");
         hsetup->add_history_value("viscoelastic_offset", "0");
-        hsetup->add_history_value("viscoelastic_since_start", "0");
-        hsetup->add_history_value("viscoelastic_ends_after", "0");
-        hsetup->add_history_value("viscoelastic_friction_excess", "0");
-        cmb->add_history_offset("viscoelastic_collision", history_offset);
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -107,7 +103,7 @@ public:
         if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
         if (!exactCollision || !scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
-        for (int d = 0; d < 5; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
+        for (int d = 0; d < 2; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -137,7 +133,7 @@ private:
     }
 
     // exactCollision: the step of this contact's collision; its outcome for
-    // the tangential model goes to the history too.
+    // the tangential model goes to the table (scaled to this contact's meff).
     double collisionForce(SurfacesIntersectData& sidata, double meff)
     {
         using namespace viscoelastic;
@@ -146,7 +142,9 @@ private:
         const CollisionStep step =
             exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state, sidata.deltan, -sidata.vn);
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
-        h[2] = step.sinceStart, h[3] = step.endsAfter, h[4] = meff * step.frictionExcess;
+        CollisionStep forTangential = step;
+        forTangential.frictionExcess *= meff;  // as a force [N]
+        table.setCollisionStep(forTangential);
         return meff * step.force;
     }
 

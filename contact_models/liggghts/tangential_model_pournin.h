@@ -46,7 +46,6 @@ public:
         // coefficientFriction as the registry read it once (model viscoelastic checked it)
         registry.registerProperty("coeffFrict", &MODEL_PARAMS::createCoeffFrict);
         registry.connect("coeffFrict", coeffFrict, "tangential_model pournin");
-        collision_offset = cmb->get_history_offset("viscoelastic_collision");
     }
 
     inline void surfacesIntersect(const SurfacesIntersectData& sidata, ForceData& i_forces, ForceData& j_forces)
@@ -63,18 +62,18 @@ public:
         const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
         const bool advance = sidata.computeflag && sidata.shearupdate;
 
-        // exactCollision: model viscoelastic's table has the tangential law,
-        // and its step's outcome is in the contact history (with the excess
-        // of the law's mu |Fn| over the step where the force turns attractive).
+        // exactCollision: model viscoelastic's table has the tangential law
+        // and its step's outcome (with the excess of the law's mu |Fn| over
+        // the step where the force turns attractive).
         const viscoelastic::TypePairTable* const t = table();
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
         const double limit = t && t->exactCollision()
-            ? viscoelastic::frictionLimit(mu, std::fabs(sidata.Fn) + collisionStep(sidata).frictionExcess)
+            ? viscoelastic::frictionLimit(mu, std::fabs(sidata.Fn) + t->collisionStep().frictionExcess)
             : viscoelastic::frictionLimit(mu, sidata.Fn);
         const Vec3 Ft = t && t->exactCollision()
             ? viscoelastic::pourninExactTangentialForce(state, normal, vt, contactPointMass(sidata),
                                                         t->collision(sidata.itype, sidata.jtype).tangential,
-                                                        collisionStep(sidata), limit, advance)
+                                                        t->collisionStep(), limit, advance)
             : viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
                                                    advance, unclippedNormalForce(sidata),
                                                    viscoelastic::timeSinceTouch(sidata.deltan, -sidata.vn, update->dt));
@@ -130,16 +129,8 @@ private:
         if (!looked_) table_ = viscoelastic::TypePairTable::of(cmb), looked_ = true;
         return table_;
     }
-    viscoelastic::CollisionStep collisionStep(const SurfacesIntersectData& sidata) const
-    {
-        const double* const h = &sidata.contact_history[collision_offset];
-        viscoelastic::CollisionStep s;
-        s.sinceStart = h[2], s.endsAfter = h[3], s.frictionExcess = h[4];  // the excess as a force [N]
-        return s;
-    }
 
     double** coeffFrict = nullptr;
-    int collision_offset = -1;
     const viscoelastic::TypePairTable* table_ = nullptr;
     bool looked_ = false;
     ContactModelBase* cmb;

@@ -53,6 +53,12 @@ public:
     const CollisionLaws& collision(int i, int j) const { return collision_[i * stride_ + j]; }
     static const TypePairTable* of(const void* owner);
 
+    // What the normal step of the contact in hand decided, for `tangential
+    // pournin`: LIGGGHTS calls the normal and then the tangential model of
+    // one contact back to back, so it needs no place in the contact history.
+    void setCollisionStep(const CollisionStep& s) const { step_ = s; }
+    const CollisionStep& collisionStep() const { return step_; }
+
 private:
     void say(const std::string& report, const std::vector<std::string>& warnings);
 
@@ -61,6 +67,7 @@ private:
     std::vector<ContactParameters> params_;  // as read, for loadCollision
     std::vector<CollisionLaws> collision_;
     const void* owner_ = nullptr;
+    mutable CollisionStep step_;
 
     // What this table printed at its last load, so the report appears once
     // per LAMMPS instance (see say()).
