@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "core/collision.h"
 #include "core/law.h"
 
 namespace {
@@ -18,6 +19,7 @@ struct Contact {
     double meff, overlap, rate;
     Vec3 n, vt;
     TangentialState state;
+    CollisionState collision{CollisionPhase::touching, 0.0};  // a contact under way
 };
 
 std::vector<Contact> contacts(size_t count)
@@ -73,9 +75,33 @@ void ContactPournin(benchmark::State& state)
     state.SetItemsProcessed(state.iterations() * kContacts);
 }
 
+// The same contacts under exactCollision: the normal step law and the
+// tangential one, with the contact point's tangential mass (lever arms
+// R - overlap/2) that LIGGGHTS' glue computes per step. Its per-contact cost
+// against ContactPournin's is the price of exactCollision in the core.
+void ContactExactCollision(benchmark::State& state)
+{
+    std::vector<Contact> c = contacts(kContacts);
+    const double dt = 1e-5, r = 1.5e-3;
+    const auto osc = exactCollisionOscillators({1e-4, 0.56, 0.46, 0.5}, false);
+    const StepLaw normal = stepLaw(osc->normal.k, osc->normal.c, dt, false);
+    const StepLaw tangential = stepLaw(osc->tangential.k, osc->tangential.c, dt, false);
+    for (auto _ : state)
+        for (Contact& k : c) {
+            const CollisionStep step = exactCollisionStep(normal, k.collision, k.overlap, k.rate);
+            const double arm = r - 0.5 * k.overlap;
+            const double mt = contactPointMass(k.meff, 2.0 * k.meff, r, arm, 2.0 * k.meff, r, arm);
+            const Vec3 ft = pourninExactTangentialForce(k.state, k.n, k.vt, mt, tangential, step,
+                                                        frictionLimit(0.5, k.meff * step.friction), true);
+            benchmark::DoNotOptimize(ft);
+        }
+    state.SetItemsProcessed(state.iterations() * kContacts);
+}
+
 }  // namespace
 
 BENCHMARK(NormalViscoelastic);
 BENCHMARK(NormalAbsoluteConstants);
 BENCHMARK(ContactPournin);
+BENCHMARK(ContactExactCollision);
 BENCHMARK_MAIN();

@@ -43,7 +43,9 @@ def section(res, m, rows):
     contacts, reps = m["contacts_per_iteration"], m["repetitions"]
     return (
         f"{contacts} random contacts per iteration, {reps} repetitions, median; `NormalAbsoluteConstants` is the\n"
-        "same normal force with precomputed absolute constants (what hooke/stiffness does), in the same binary:\n\n"
+        "same normal force with precomputed absolute constants (what hooke/stiffness does), in the same binary;\n"
+        "`ContactExactCollision` is `ContactPournin`'s contacts under exactCollision (normal step law, the exact\n"
+        "tangential spring, the contact point's tangential mass per step):\n\n"
         + harness.markdown(medians, [("benchmark", "name", None),
                                      ("ns per contact (median)", lambda r: r["real_time"] / contacts, "{:.2f}")])
         + "\n" + common.sh(common.command("core.py", repetitions=reps)))

@@ -67,6 +67,10 @@ struct StepLaw {
     double kStep = 0, cStep = 0;  // the leapfrog-exact law inside the contact
     double uX = 0, uV = 0;      // continuous rate at a sample: u = uX x_n + uV v_{n-1/2}
     double endX = 0, endV = 0;  // what ends the contact, one step on: endX x_n + endV v_{n-1/2}
+    // Inside the contact: the continuous force half a step on (aheadX x_n +
+    // aheadV v_{n-1/2}), and its mean over the step's half-step interval,
+    // (u(-dt/2) - u(dt/2)) / dt = frictionX x_n + frictionV v_{n-1/2}.
+    double aheadX = 0, aheadV = 0, frictionX = 0, frictionV = 0;
 };
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
@@ -86,6 +90,11 @@ inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
     const Motion fromX = s.o.after({1.0, s.uX}, dt), fromV = s.o.after({0.0, s.uV}, dt);
     s.endX = s.o.ending(fromX, forceEnds);
     s.endV = s.o.ending(fromV, forceEnds);
+    const double h = 0.5 * dt;
+    const Motion aheadX = s.o.after({1.0, s.uX}, h), aheadV = s.o.after({0.0, s.uV}, h);
+    const Motion backX = s.o.after({1.0, s.uX}, -h), backV = s.o.after({0.0, s.uV}, -h);
+    s.aheadX = s.o.ending(aheadX, true), s.aheadV = s.o.ending(aheadV, true);
+    s.frictionX = (backX.u - aheadX.u) / dt, s.frictionV = (backV.u - aheadV.u) / dt;
     return s;
 }
 
@@ -105,11 +114,14 @@ struct CollisionStep {
     double force = 0;        // per unit mass, along the normal (positive: repulsive)
     double sinceStart = -1;  // first step: time since first touch [s] (else < 0)
     double endsAfter = -1;   // last step: time from this step to the end of the contact [s] (else < 0)
-    // The step in which the force turns attractive (limitForce off): what the
-    // law's friction bound mu |Fn| holds over the step beyond mu |force|, per
-    // unit mass and mu (the step's net force nets its repulsive and attractive
-    // parts; sliding, the law's friction impulse is mu times the integral of |Fn|).
-    double frictionExcess = 0;
+    // The law's friction bound is mu |Fn|: over this step, mu times `friction`,
+    // the mean of |Fn| (per unit mass) over the part of the continuous contact
+    // the step stands for (first touch or the half step before, to the half
+    // step after or the end). The steps' parts tile the contact, so in gross
+    // sliding the friction impulse is mu times the integral of |Fn| exactly.
+    // (The step's own force is not that mean: it nets the repulsive and
+    // attractive parts where the force turns, and it corrects the start.)
+    double friction = 0;
 };
 
 namespace detail {
@@ -167,27 +179,19 @@ double bracketedNewton(FS fs, double lo, double hi)
 // under way, uncorrected.
 constexpr double kFreshTouchSteps = 1.5;
 
-// limitForce off: the first step whose kick is attractive (force < 0). The
-// continuous overlap rate is least, u(z), where the force turns. The kicks
-// before this step sum to the repulsive impulse down to its incoming rate v,
-// those after it to the attractive impulse from its outgoing rate v - F dt;
-// this step holds the rest, |v - u(z)| + |u(z) - (v - F dt)|, so that the
-// steps' friction bounds sum to mu times the law's integral of |Fn| exactly.
-// The last step of a contact still touching holds the turn whatever its kick
-// (the force ends attractive, -c en v0).
-inline void markAttraction(const StepLaw& law, CollisionState& state, const Motion& now, double v, CollisionStep& r,
-                           bool last = false)
+// The mean of |k x + c u| over [lo, hi] along the continuous motion `now`,
+// per step: |u(lo) - u(hi)| / dt, split where the force turns attractive
+// (limitForce off), which marks the contact `attractive` from then on.
+inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo, double hi)
 {
-    if (law.forceEnds || state.phase != CollisionPhase::touching || !(r.force < 0.0 || last)) return;
-    state.phase = CollisionPhase::attractive;
-    const double dt = law.dt;
     const auto force = [&](double tau) { return law.o.ending(law.o.after(now, tau), true); };
-    double lo = -dt, hi = dt;
-    while (force(lo) <= 0.0 && lo > -4.0 * dt) lo -= dt;
-    while (force(hi) >= 0.0 && hi < 4.0 * dt) hi += dt;
-    if (!(force(lo) > 0.0 && force(hi) < 0.0)) return;  // no zero near: not a binary contact's
-    const double least = law.o.after(now, detail::bracketedRoot(force, lo, hi)).u;
-    r.frictionExcess = (std::fabs(v - least) + std::fabs(least - (v - r.force * dt))) / dt - std::fabs(r.force);
+    const double uLo = law.o.after(now, lo).u, uHi = law.o.after(now, hi).u;
+    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(force(hi) < 0.0))
+        return std::fabs(uLo - uHi) / law.dt;
+    state.phase = CollisionPhase::attractive;
+    if (!(force(lo) > 0.0)) return std::fabs(uLo - uHi) / law.dt;
+    const double least = law.o.after(now, detail::bracketedRoot(force, lo, hi)).u;  // the rate where it turns
+    return (std::fabs(uLo - least) + std::fabs(least - uHi)) / law.dt;
 }
 
 // One step of a contact under `exactCollision`: x the overlap at this step,
@@ -213,12 +217,16 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         const bool attractive = state.phase == CollisionPhase::attractive;
         if ((attractive || state.phase == CollisionPhase::touching) && law.endX * x + law.endV * vUsed > 0.0) {
             r.force = (v - vUsed) / dt + law.kStep * x + law.cStep * vUsed;
-            if (r.force < 0.0 && !attractive) markAttraction(law, state, {x, law.uX * x + law.uV * vUsed}, v, r);
+            const double mean = law.frictionX * x + law.frictionV * vUsed;  // of the force over the step
+            if (attractive) r.friction = -mean;
+            else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed >= 0.0) r.friction = mean;
+            else r.friction = frictionOver(law, state, {x, law.uX * x + law.uV * vUsed}, -0.5 * dt, 0.5 * dt);
             return r;
         }
         now = {x, law.uX * x + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
+    const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;  // this step's part of the contact
     const auto endingAndSlope = [&](double tau) {
         const Motion m = law.o.after(now, tau);
         const double acceleration = -law.o.k * m.x - law.o.c * m.u;
@@ -228,14 +236,14 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     if (endingAndSlope(dt).first > 0.0) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
         r.force = (v - (next - x) / dt) / dt;
-        markAttraction(law, state, now, v, r);
+        r.friction = frictionOver(law, state, now, from, 0.5 * dt);
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
     const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     r.endsAfter = tau;
     r.force = (v - law.o.after(now, tau).u) / dt;
-    markAttraction(law, state, now, v, r, true);
+    r.friction = frictionOver(law, state, now, from, tau);
     state.phase = CollisionPhase::ended;
     return r;
 }
@@ -269,8 +277,11 @@ inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool lim
 // (normal.endsAfter >= 0): the force that leaves at the continuous rate at
 // the end; otherwise the step-exact law. Sticking: the Coulomb cap is the
 // caller's.
+namespace detail {
+
+// exactTangentialStep's first and last steps (once per contact each).
 template <class V>
-V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, const V& w)
+V exactTangentialEnds(const StepLaw& law, const CollisionStep& normal, V& xi, const V& w)
 {
     const double dt = law.dt;
     if (normal.sinceStart >= 0.0) {
@@ -279,15 +290,21 @@ V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, co
         const V next = w * law.o.after({0.0, 1.0}, s + dt).x;
         return ((next - xi) / dt - w) / dt;
     }
-    if (normal.endsAfter >= 0.0) {
-        // the motion through this sample and the one before, per component;
-        // by linearity its rate at the end from the motions from (1, 0) and (0, 1)
-        const V rate = law.uX * xi + law.uV * w;
-        const double tau = normal.endsAfter;
-        const V exit = law.o.after({1.0, 0.0}, tau).u * xi + law.o.after({0.0, 1.0}, tau).u * rate;
-        return (exit - w) / dt;
-    }
-    return -(law.kStep * xi + law.cStep * w);
+    // the motion through this sample and the one before, per component;
+    // by linearity its rate at the end from the motions from (1, 0) and (0, 1)
+    const V rate = law.uX * xi + law.uV * w;
+    const double tau = normal.endsAfter;
+    const V exit = law.o.after({1.0, 0.0}, tau).u * xi + law.o.after({0.0, 1.0}, tau).u * rate;
+    return (exit - w) / dt;
+}
+
+}  // namespace detail
+
+template <class V>
+inline V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, const V& w)
+{
+    if (normal.sinceStart >= 0.0 || normal.endsAfter >= 0.0) return detail::exactTangentialEnds(law, normal, xi, w);
+    return -(law.kStep * xi + law.cStep * w);  // the common case: inside the contact
 }
 
 // `tangential pournin` under exactCollision: law.h's pourninTangentialForce
@@ -306,7 +323,9 @@ inline Vec3 pourninExactTangentialForce(TangentialState& s, const Vec3& n, const
     const double fmag = f.norm();
     if (fmag > limit) {
         f *= (fmag > 0.0 ? limit / fmag : 0.0);
-        t.xi = -(f / mt + law.cStep * vt) / law.kStep;  // the spring that gives the capped force
+        // the spring that gives the capped force (scalar reciprocals: one
+        // division each instead of one per component)
+        t.xi = -(f * (1.0 / mt) + law.cStep * vt) * (1.0 / law.kStep);
     }
     if (advance) s = t;
     return f;

@@ -108,7 +108,7 @@ inline Vec3 pourninTangentialForce(TangentialState& s, const Vec3& n, const Vec3
     const double fmag = f.norm();
     if (fmag > limit) {
         f *= (fmag > 0.0 ? limit / fmag : 0.0);
-        if (advance && kt > 0.0) s.xi = -(f + ct * vt) / kt;
+        if (advance && kt > 0.0) s.xi = -(f + ct * vt) * (1.0 / kt);
     }
     return f;
 }

@@ -143,7 +143,7 @@ private:
             exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state, sidata.deltan, -sidata.vn);
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
         CollisionStep forTangential = step;
-        forTangential.frictionExcess *= meff;  // as a force [N]
+        forTangential.friction *= meff;  // as a force [N]
         table.setCollisionStep(forTangential);
         return meff * step.force;
     }

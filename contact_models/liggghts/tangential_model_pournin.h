@@ -63,12 +63,11 @@ public:
         const bool advance = sidata.computeflag && sidata.shearupdate;
 
         // exactCollision: model viscoelastic's table has the tangential law
-        // and its step's outcome (with the excess of the law's mu |Fn| over
-        // the step where the force turns attractive).
+        // and its step's outcome, with the law's mean |Fn| over the step.
         const viscoelastic::TypePairTable* const t = table();
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
         const double limit = t && t->exactCollision()
-            ? viscoelastic::frictionLimit(mu, std::fabs(sidata.Fn) + t->collisionStep().frictionExcess)
+            ? viscoelastic::frictionLimit(mu, t->collisionStep().friction)
             : viscoelastic::frictionLimit(mu, sidata.Fn);
         const Vec3 Ft = t && t->exactCollision()
             ? viscoelastic::pourninExactTangentialForce(state, normal, vt, contactPointMass(sidata),

@@ -101,12 +101,11 @@ TEST(ExactCollision, EverySingleStickingCollisionRestitutesEt)
 TEST(ExactCollision, EverySingleSlidingCollisionFollowsWalton)
 {
     // Gross sliding on a wall (vt/vn 4, mu 0.3): the tangential impulse is
-    // mu times the integral of |Fn| (Walton). With limitForce off the force
-    // turns attractive before the end; the step in which it does nets its
-    // repulsive and attractive impulse, and exactCollision adds what |Fn|
-    // holds beyond that (without it: 6 % off at tc/5 for the worst phase).
+    // mu times the integral of |Fn| (Walton). exactCollision bounds friction
+    // per step by the law's mean |Fn| over the step's part of the contact
+    // (the steps' own forces would miss it by 6 % at tc/5 for the worst phase).
     // What remains does not depend on the step: Walton's rigid lever arm R
-    // against LIGGGHTS' R - overlap/2 (measured 0.40-0.46 % at all three
+    // against LIGGGHTS' R - overlap/2 (measured 0.41-0.47 % at all three
     // steps). Tolerance: the 0.5 % at tc/10 and 1 % at tc/5; and the
     // worst phase moves by less than 0.1 % from tc/10 to tc/5.
     unsigned seed = 300;

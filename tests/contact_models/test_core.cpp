@@ -138,7 +138,9 @@ TEST(Timestep, GuardStopsEveryMeasuredMultiContactFailure)
             return 4.0 / (u.kn * dt * dt + 2.0 * u.cn * dt);
         };
         EXPECT_LT(zAt(o.firstFailing * tc), kCoordinationFactor);
-        EXPECT_GT(zAt(o.lastStable * tc), 3.2);  // every stable run: above the failing runs' 3.12
+        // the last stable runs under 1 g lie above the failing runs' largest Z, 3.12 (under 30 g
+        // en 0.95 still ran at Z 3.12: the boundary)
+        EXPECT_GT(zAt(o.lastStable * tc), 3.2);
     }
     EXPECT_EQ(halfWouldFail, 2);
     // the turning drum (Table 3.1: beads 0.56, drum 0.46; and en 0.3 everywhere) fails later
