@@ -19,9 +19,10 @@
 //    when the overlap (or, with limitForce, the force) reaches zero within the
 //    coming step at s_e, the last force makes the rate after the step the
 //    exit rate X'(s_e).
-// A contact between two steps is otherwise untouched: two multiplications
-// and a comparison per step more than the plain law; the start and end need
-// a few transcendental evaluations, once per contact.
+// A contact between two steps is otherwise untouched: four multiplications
+// and two comparisons per step more than the plain law (half of them for the
+// friction bound); the start and end need a few transcendental evaluations,
+// once per contact.
 //
 // Per unit mass; the LIGGGHTS model multiplies by meff. State per contact:
 // its phase (fresh, touching, ended), kept in the contact history.
@@ -211,7 +212,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         state.previousOffset = now.x - x;
     } else {
         // Under way: the previous sample and this one define the motion. The
-        // common case costs two products and a comparison over the plain law.
+        // common case costs four products and two comparisons over the plain law.
         const double vUsed = v - state.previousOffset / dt;
         state.previousOffset = 0.0;
         const bool attractive = state.phase == CollisionPhase::attractive;
