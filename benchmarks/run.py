@@ -47,7 +47,7 @@ def settings(restart):
         "cost": (cost, [["--steps", "2000", "--rounds", "5"] + (["--restart", str(restart)] if restart else [])]),
         "accuracy": (accuracy, [["--restart", slab]]),
         "multicontact": (multicontact, [[]]),
-        "collision": (collision, [["--rounds", "9"]]),
+        "collision": (collision, [["--rounds", "15"]]),
         "stability": (stability, [["--scenes", "binary,column"],
                                   ["--scenes", "drum", "--restart", slab],
                                   ["--scenes", "drum", "--restart", slab, "--drum-runs", "0.3:hooke",

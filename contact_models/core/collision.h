@@ -182,17 +182,25 @@ constexpr double kFreshTouchSteps = 1.5;
 
 // The mean of |k x + c u| over [lo, hi] along the continuous motion `now`,
 // per step: |u(lo) - u(hi)| / dt, split where the force turns attractive
-// (limitForce off), which marks the contact `attractive` from then on.
+// (limitForce off), which marks the contact `attractive` from then on. The
+// force of a free damped oscillator is itself one, F(t) = e^(-lambda t)
+// (F0 cos w t + G sin w t) with G = (F0' + lambda F0) / w: its zeros lie at
+// w t = atan2(-F0, G) + n pi, and [lo, hi] (under half a period) holds one.
 inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo, double hi)
 {
-    const auto force = [&](double tau) { return law.o.ending(law.o.after(now, tau), true); };
-    const double uLo = law.o.after(now, lo).u, uHi = law.o.after(now, hi).u;
-    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(force(hi) < 0.0))
-        return std::fabs(uLo - uHi) / law.dt;
+    const FreeOscillator& o = law.o;
+    const Motion a = o.after(now, lo), b = o.after(now, hi);
+    const double meanForce = std::fabs(a.u - b.u) / law.dt;
+    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) < 0.0)) return meanForce;
     state.phase = CollisionPhase::attractive;
-    if (!(force(lo) > 0.0)) return std::fabs(uLo - uHi) / law.dt;
-    const double least = law.o.after(now, detail::bracketedRoot(force, lo, hi)).u;  // the rate where it turns
-    return (std::fabs(uLo - least) + std::fabs(least - uHi)) / law.dt;
+    if (!(o.ending(a, true) > 0.0)) return meanForce;
+    const double f0 = o.ending(now, true), df0 = o.k * now.u + o.c * (-o.k * now.x - o.c * now.u);
+    const double half = kPi / o.omega;
+    double zero = std::atan2(-f0, (df0 + o.lambda * f0) / o.omega) / o.omega;
+    zero += half * std::ceil((lo - zero) / half);  // the first zero from lo on
+    if (!(zero <= hi)) zero = detail::bracketedRoot([&](double t) { return o.ending(o.after(now, t), true); }, lo, hi);
+    const double least = o.after(now, zero).u;  // the rate where the force turns
+    return (std::fabs(a.u - least) + std::fabs(least - b.u)) / law.dt;
 }
 
 // One step of a contact under `exactCollision`: x the overlap at this step,
