@@ -19,8 +19,8 @@
 //    when the overlap (or, with limitForce, the force) reaches zero within the
 //    coming step at s_e, the last force makes the rate after the step the
 //    exit rate X'(s_e).
-// A contact between two steps is otherwise untouched: four multiplications
-// and two comparisons per step more than the plain law (half of them for the
+// A contact between two steps is otherwise untouched: nine multiplications
+// and two comparisons per step more than the plain law (four of them for the
 // friction bound); the start and end need a few transcendental evaluations,
 // once per contact.
 //
@@ -72,6 +72,12 @@ struct StepLaw {
     // aheadV v_{n-1/2}), and its mean over the step's half-step interval,
     // (u(-dt/2) - u(dt/2)) / dt = frictionX x_n + frictionV v_{n-1/2}.
     double aheadX = 0, aheadV = 0, frictionX = 0, frictionV = 0;
+    // What ends the contact, one step on, must exceed endMargin x_n to go on:
+    // a next sample on the surface within round-off would fall to or below
+    // zero in the leapfrog, and the end step (its exit rate, its friction)
+    // would never run.
+    double endMargin = 0;
+    double inverseDt = 0;
 };
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
@@ -96,6 +102,8 @@ inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
     const Motion backX = s.o.after({1.0, s.uX}, -h), backV = s.o.after({0.0, s.uV}, -h);
     s.aheadX = s.o.ending(aheadX, true), s.aheadV = s.o.ending(aheadV, true);
     s.frictionX = (backX.u - aheadX.u) / dt, s.frictionV = (backV.u - aheadV.u) / dt;
+    s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
+    s.inverseDt = 1.0 / dt;
     return s;
 }
 
@@ -220,12 +228,13 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         state.previousOffset = now.x - x;
     } else {
         // Under way: the previous sample and this one define the motion. The
-        // common case costs four products and two comparisons over the plain law.
-        const double vUsed = v - state.previousOffset / dt;
+        // common case costs nine products and two comparisons over the plain law.
+        const double vUsed = v - state.previousOffset * law.inverseDt;
         state.previousOffset = 0.0;
         const bool attractive = state.phase == CollisionPhase::attractive;
-        if ((attractive || state.phase == CollisionPhase::touching) && law.endX * x + law.endV * vUsed > 0.0) {
-            r.force = (v - vUsed) / dt + law.kStep * x + law.cStep * vUsed;
+        if ((attractive || state.phase == CollisionPhase::touching) &&
+            law.endX * x + law.endV * vUsed > law.endMargin * x) {
+            r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed;
             const double mean = law.frictionX * x + law.frictionV * vUsed;  // of the force over the step
             if (attractive) r.friction = -mean;
             else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed >= 0.0) r.friction = mean;
@@ -242,7 +251,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         return law.forceEnds ? std::make_pair(law.o.k * m.x + law.o.c * m.u, law.o.k * m.u + law.o.c * acceleration)
                              : std::make_pair(m.x, m.u);
     };
-    if (endingAndSlope(dt).first > 0.0) {  // on along the continuous motion: the next sample lies on it
+    if (endingAndSlope(dt).first > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
         r.force = (v - (next - x) / dt) / dt;
         r.friction = frictionOver(law, state, now, from, 0.5 * dt);
