@@ -58,6 +58,18 @@ struct FreeOscillator {
     }
     // What ends a contact: the overlap, or with limitForce the force k x + c u.
     double ending(Motion m, bool force) const { return force ? k * m.x + c * m.u : m.x; }
+    // The rate of the force k x + c u along the motion (x'' = -k x - c u).
+    double forceRate(Motion m) const { return k * m.u + c * (-k * m.x - c * m.u); }
+    // The first zero of the force at or after `from` along the motion through
+    // m (at 0). The force of a free damped oscillator is itself one,
+    // e^(-lambda t) (F0 cos w t + G sin w t) with G = (F0' + lambda F0) / w:
+    // its zeros lie at w t = atan2(-F0, G) + n pi.
+    double forceZeroFrom(Motion m, double from) const
+    {
+        const double f0 = ending(m, true), half = kPi / omega;
+        const double zero = std::atan2(-f0, (forceRate(m) + lambda * f0) / omega) / omega;
+        return zero + half * std::ceil((from - zero) / half);
+    }
 };
 
 // One oscillator at one timestep: everything a contact needs per step.
@@ -190,10 +202,8 @@ constexpr double kFreshTouchSteps = 1.5;
 
 // The mean of |k x + c u| over [lo, hi] along the continuous motion `now`,
 // per step: |u(lo) - u(hi)| / dt, split where the force turns attractive
-// (limitForce off), which marks the contact `attractive` from then on. The
-// force of a free damped oscillator is itself one, F(t) = e^(-lambda t)
-// (F0 cos w t + G sin w t) with G = (F0' + lambda F0) / w: its zeros lie at
-// w t = atan2(-F0, G) + n pi, and [lo, hi] (under half a period) holds one.
+// (limitForce off), which marks the contact `attractive` from then on;
+// [lo, hi] (under half a period) holds one zero of the force.
 inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo, double hi)
 {
     const FreeOscillator& o = law.o;
@@ -202,10 +212,7 @@ inline double frictionOver(const StepLaw& law, CollisionState& state, const Moti
     if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) < 0.0)) return meanForce;
     state.phase = CollisionPhase::attractive;
     if (!(o.ending(a, true) > 0.0)) return meanForce;
-    const double f0 = o.ending(now, true), df0 = o.k * now.u + o.c * (-o.k * now.x - o.c * now.u);
-    const double half = kPi / o.omega;
-    double zero = std::atan2(-f0, (df0 + o.lambda * f0) / o.omega) / o.omega;
-    zero += half * std::ceil((lo - zero) / half);  // the first zero from lo on
+    double zero = o.forceZeroFrom(now, lo);
     if (!(zero <= hi)) zero = detail::bracketedRoot([&](double t) { return o.ending(o.after(now, t), true); }, lo, hi);
     const double least = o.after(now, zero).u;  // the rate where the force turns
     return (std::fabs(a.u - least) + std::fabs(least - b.u)) / law.dt;
@@ -247,9 +254,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;  // this step's part of the contact
     const auto endingAndSlope = [&](double tau) {
         const Motion m = law.o.after(now, tau);
-        const double acceleration = -law.o.k * m.x - law.o.c * m.u;
-        return law.forceEnds ? std::make_pair(law.o.k * m.x + law.o.c * m.u, law.o.k * m.u + law.o.c * acceleration)
-                             : std::make_pair(m.x, m.u);
+        return law.forceEnds ? std::make_pair(law.o.ending(m, true), law.o.forceRate(m)) : std::make_pair(m.x, m.u);
     };
     if (endingAndSlope(dt).first > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
         const double next = law.o.after(now, dt).x;
@@ -278,10 +283,9 @@ inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool lim
 {
     const double half = kPi / o.omega;  // the overlap's zero: exactly tc
     if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
-    const auto force = [&](double t) { return o.ending(o.after({0.0, 1.0}, t), true); };
     // the force k x + c u turns negative after the peak overlap (u < 0), before x returns to 0
     const double peak = std::atan2(o.omega, o.lambda) / o.omega;
-    const double tf = detail::bracketedRoot(force, peak, half);
+    const double tf = o.forceZeroFrom({0.0, 1.0}, peak);
     const Motion m = o.after({0.0, 1.0}, tf);
     return {-m.u, tf + m.x / -m.u, tf};
 }

@@ -68,13 +68,6 @@ inline double timeSinceCapZero(double previousForce, double force, double dt)
     return dt * force / (force - previousForce);
 }
 
-// Tangential law of the thesis (Eq. 3.18-3.21) for one step.
-// The overlap is carried with the rotating contact frame (rotated, not
-// projected, so its length survives a turning normal), then advanced by the
-// tangential velocity of i relative to j at the contact point, vt. The
-// Coulomb cap applies to the total force kt xi + ct dxi/dt; when it binds the
-// spring is reset so that it reproduces the capped force (Luding 2008), which
-// keeps the force continuous when sliding stops.
 // The time since a contact's first touch at its first overlapping step:
 // overlap over approach rate (free flight before it), at most a step. Its
 // tangential overlap grew for that long, not a whole step: with a whole step
@@ -85,6 +78,13 @@ inline double timeSinceTouch(double overlap, double overlapRate, double dt)
     return (overlapRate > 0.0 && overlap < overlapRate * dt) ? overlap / overlapRate : dt;
 }
 
+// Tangential law of the thesis (Eq. 3.18-3.21) for one step.
+// The overlap is carried with the rotating contact frame (rotated, not
+// projected, so its length survives a turning normal), then advanced by the
+// tangential velocity of i relative to j at the contact point, vt. The
+// Coulomb cap applies to the total force kt xi + ct dxi/dt; when it binds the
+// spring is reset so that it reproduces the capped force (Luding 2008), which
+// keeps the force continuous when sliding stops.
 // `unclippedNormalForce` (kn xi + cn dxi/dt) locates the cap's zeros between
 // steps (timeSinceCapZero): there the spring restarts from zero force.
 // `sinceTouch` (timeSinceTouch) is the part of the step in contact, used at

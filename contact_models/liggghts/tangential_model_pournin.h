@@ -65,11 +65,10 @@ public:
         // exactCollision: model viscoelastic's table has the tangential law
         // and its step's outcome, with the law's mean |Fn| over the step.
         const viscoelastic::TypePairTable* const t = table();
+        const bool exact = t && t->exactCollision();
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
-        const double limit = t && t->exactCollision()
-            ? viscoelastic::frictionLimit(mu, t->collisionStep().friction)
-            : viscoelastic::frictionLimit(mu, sidata.Fn);
-        const Vec3 Ft = t && t->exactCollision()
+        const double limit = viscoelastic::frictionLimit(mu, exact ? t->collisionStep().friction : sidata.Fn);
+        const Vec3 Ft = exact
             ? viscoelastic::pourninExactTangentialForce(state, normal, vt, contactPointMass(sidata),
                                                         t->collision(sidata.itype, sidata.jtype).tangential,
                                                         t->collisionStep(), limit, advance)
