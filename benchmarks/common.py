@@ -71,6 +71,12 @@ def limits(en):
     return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en))[0]
 
 
+def stiffening(en, fraction):
+    """`contact_law limit --en EN --at FRACTION`: the stiffening Z for which the binary (Jury) limit
+    of a contact Z times stiffer and more damped is dt = FRACTION tc (the guard's form)."""
+    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--at", fraction))[0]["stiffening_at"]
+
+
 def window_average(prefix, dt, rpm=RPM, skip=None, until=None, after_first=False):
     """Time averages and their batch-means standard errors over a window of a run's snapshots
     (`drum_metrics series --average all`): the row of PREFIX_average.csv. `after_first`: skip the

@@ -16,7 +16,6 @@ The guard's limits come from `contact_law limit`. --append merges drum rows into
 OUT/stability_drum.csv (a rerun of the same en, dt/tc and model replaces the old row).
 Writes OUT/stability_{binary,column,drum,limits}.csv and OUT/stability.json."""
 
-import math
 import sys
 from pathlib import Path
 
@@ -189,17 +188,10 @@ def summary(binary_rows, column_rows, drum_rows, limits, bead_en, drum_en):
         g, gd = limits[en]["guard_tc"], limits[dguard_en]["guard_tc"]
         before = all(x is None or lim < x for lim, x in ((g, cfail), (g, grow), (gd, dfail)))
         rows.append({"en": en, "load": load, "limit": limits[en]["binary_limit_tc"], "grow": grow, "cfail": cfail,
-                     "z": None if cfail is None else stiffening(en, cfail), "dfail": dfail if load == 1 else None,
+                     "z": None if cfail is None else common.stiffening(en, cfail), "dfail": dfail if load == 1 else None,
                      "guard": f"{g:.4g}" + (f"; drum {gd:.4g} (bead-drum en {dguard_en:g})" if dguard_en != en else ""),
                      "guard_column": guard, "before": "yes" if before else "NO"})
     return rows
-
-
-def stiffening(en, fraction):
-    """Z for which the binary (Jury) limit of a Pournin contact Z times stiffer and more damped is
-    dt = fraction tc: Z (w0^2 dt^2 + 4 beta dt) = 4 with w0 tc = sqrt(pi^2 + ln^2 en), beta tc = -ln en."""
-    L = -math.log(en)
-    return 4.0 / ((math.pi ** 2 + L * L) * fraction ** 2 + 4.0 * L * fraction)
 
 
 def chart(binary_rows, column_rows, drum_rows, meta, path):
@@ -265,7 +257,7 @@ def section(res):
     rows = summary(binary_rows, column_rows, drum_rows + long_rows, limits, m["bead_en"], m["drum_en"])
     failing = [r for r in rows if r["cfail"] is not None]
     zfail = (min(r["z"] for r in failing), max(r["z"] for r in failing))
-    stable = [stiffening(en, max(r["dt_over_tc"] for r in column_rows if r["en"] == en and r["load"] == load
+    stable = [common.stiffening(en, max(r["dt_over_tc"] for r in column_rows if r["en"] == en and r["load"] == load
                                  and r["model"] == "hooke" and r["status"] == "ok"))
               for en, load in {(r["en"], r["load"]) for r in column_rows}]
     zstable = (min(stable), max(stable))
@@ -285,7 +277,7 @@ def section(res):
         "`model viscoelastic` and stock runs are otherwise identical (same kinetic energies below).\n\n"
         "**The guard** (`contact_models/core/stability.h`) stops a run whose timestep exceeds the binary (Jury) "
         "limit of a contact\n"
-        f"Z = {stiffening(ens[0], limits[ens[0]]['guard_tc']):.3g} times stiffer and more damped than the type pair's, as a bead pressed "
+        f"Z = {common.stiffening(ens[0], limits[ens[0]]['guard_tc']):.3g} times stiffer and more damped than the type pair's, as a bead pressed "
         "by several neighbours at once feels\ntheir springs and dashpots in parallel. Z is fitted to the column: "
         f"at each en and load the first failing dt/tc is\nthe Jury limit of Z = {zfail[0]:.2f}-{zfail[1]:.2f} "
         f"(column *Z at failure*), the last stable one of Z = {zstable[0]:.2f}-{zstable[1]:.2f}, while a fixed "

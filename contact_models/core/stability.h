@@ -58,6 +58,13 @@ inline double stableTimestepOf(double k, double c)
     return criticalTimestepOf(kCoordinationFactor * k, kCoordinationFactor * c);
 }
 
+// The inverse: the stiffening Z for which the binary limit of a contact Z
+// times stiffer and more damped is dt (Jury: Z (k dt^2 + 2 c dt) = 4).
+inline double stiffeningAt(double k, double c, double dt)
+{
+    return 4.0 / (k * dt * dt + 2.0 * c * dt);
+}
+
 // Binary limit of a type pair: the stiffer of its normal and tangential
 // oscillators.
 inline double criticalTimestep(const ContactParameters& p)
@@ -84,6 +91,16 @@ inline double stableTimestep(const UnitCoefficients& u)
 inline double stableTimestep(const ContactParameters& p)
 {
     return stableTimestep(pourninUnitCoefficients(p));
+}
+
+// The stiffening at which a type pair's guard would be dt (what measured
+// onsets are expressed in): the guard is its most critical oscillator's, the
+// one that reaches dt at the smaller Z.
+inline double stiffeningAt(const ContactParameters& p, double dt)
+{
+    const UnitCoefficients u = pourninUnitCoefficients(p);
+    return std::min(stiffeningAt(u.kn, u.cn, dt),
+                    stiffeningAt(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio, dt));
 }
 
 }  // namespace viscoelastic

@@ -158,6 +158,17 @@ TEST_F(ContactLaw, LimitIsTheBinaryJuryLimitAndTheGuard)
     const std::vector<double> w = numbers(lines(run("limit --en 0.9 --tc 2e-4").out).at(1), ',');
     EXPECT_EQ(w[2], 0.9);
     EXPECT_NEAR(w[3], criticalTimestep(2e-4, 0.9), 1e-11 * w[3]);
+
+    // --at: the stiffening Z whose guard form gives that dt. At the guard's
+    // own dt it is the guard's factor; at another dt the binary (Jury) limit
+    // of the stiffer oscillator scaled by Z is that dt.
+    const Output a = run("limit --en 0.56 --et 0.46 --at " + std::to_string(guard / 1e-4));
+    ASSERT_EQ(a.status, 0) << a.out;
+    EXPECT_EQ(lines(a.out).at(0), "tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc,at_tc,stiffening_at");
+    EXPECT_NEAR(numbers(lines(a.out).at(1), ',').at(8), kCoordinationFactor, 1e-5);
+    const std::vector<double> z = numbers(lines(run("limit --en 0.3 --at 0.2").out).at(1), ',');
+    const UnitCoefficients u = pourninUnitCoefficients(1e-4, 0.3, 0.3);
+    EXPECT_NEAR(criticalTimestepOf(z.at(8) * u.kn, z.at(8) * u.cn), 0.2e-4, 1e-9 * 0.2e-4);
 }
 
 TEST_F(ContactLaw, BeadMassHasSeventeenDigits)

@@ -9,8 +9,9 @@
 //       on) with the constants `model viscoelastic` uses: with one mass per
 //       type every contact of a type pair has one meff, so the stock model
 //       computes the same forces. --uniform EN: en = et = EN for every pair.
-//   contact_law limit --en E [--et E2] [--tc T]
-//       CSV: the binary stability limit (Jury) and the run's guard.
+//   contact_law limit --en E [--et E2] [--tc T] [--at DT_OVER_TC]
+//       CSV: the binary stability limit (Jury) and the run's guard; with --at,
+//       the stiffening Z at which the guard's form gives that dt.
 //   contact_law bead-mass [--materials F]
 //       the mass of one bead [kg].
 //   contact_law single --en E [--et E2] [--tc T] [--limit-force] [--ratios R,...] [--phases N]
@@ -113,12 +114,14 @@ int stock(const Materials& m, std::optional<double> uniform, bool exact, double 
     return 0;
 }
 
-int limit(double tc, double en, double et)
+int limit(double tc, double en, double et, std::optional<double> at)
 {
-    const double binary = criticalTimestep(ContactParameters{tc, en, et, 0.0});
-    const double guard = stableTimestep(ContactParameters{tc, en, et, 0.0});
-    std::printf("tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc\n");
-    std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", tc, en, et, binary, guard, binary / tc, guard / tc);
+    const ContactParameters p{tc, en, et, 0.0};
+    const double binary = criticalTimestep(p), guard = stableTimestep(p);
+    std::printf("tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc%s\n", at ? ",at_tc,stiffening_at" : "");
+    std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", tc, en, et, binary, guard, binary / tc, guard / tc);
+    if (at) std::printf(",%.17g,%.17g", *at, stiffeningAt(p, *at * tc));
+    std::printf("\n");
     return 0;
 }
 
@@ -208,6 +211,10 @@ int main(int argc, char** argv)
                              ->check(CLI::Range(1e-300, 1.0));
     CLI::Option* tcOpt = limitCmd->add_option("--tc", tc, "contact duration [s] (default: bead_tc)")
                              ->check(CLI::PositiveNumber);
+    double at = 0.0;
+    CLI::Option* atOpt = limitCmd->add_option("--at", at,
+                                              "dt/tc: also the stiffening Z at which the guard's form gives it")
+                             ->check(CLI::PositiveNumber);
 
     CLI::App* massCmd = app.add_subcommand("bead-mass", "mass of one bead [kg]");
     addMaterials(massCmd);
@@ -240,7 +247,8 @@ int main(int argc, char** argv)
             return stock(Materials(path), *uniformOpt ? std::optional<double>(uniform) : std::nullopt,
                          exact, dt, limitForce);
         if (*limitCmd)
-            return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en);
+            return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en,
+                         *atOpt ? std::optional<double>(at) : std::nullopt);
         if (*singleCmd)
             return single({*sTcOpt ? sTc : Materials(path)["bead_tc"], sEn, *sEtOpt ? sEt : sEn, 0.0}, sLimit, ratios,
                           phases);
