@@ -2,8 +2,9 @@
 //  - DrumBalance: `-var balance on` moves the y cut of `processors * * 1` to
 //    the beads' median (beads per rank equal) without changing the physics;
 //  - DrumCylinder: `-var wall cylinder`, the drum as LIGGGHTS' primitive
-//    xcylinder with `shear y omega`: a single bead at the bottom of the drum
-//    ends up rolling at 2/7 omega (R - r); `shear x` translates the wall.
+//    xcylinder with `shear y omega'` (omega' = omega R / (R - r)): a single
+//    bead at the bottom of the drum ends up rolling at 2/7 omega R, the
+//    drum's surface speed; `shear x` translates the wall.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -215,8 +216,9 @@ TEST_F(DrumBalance, GridStartSplitsAtTheMedianColumn)
 // phi the bead's angle from the bottom. Once the contact no longer slips,
 // v + w r = V_wall, hence with I = 2/5 m r^2
 //     v(t) = 2/7 V_wall - 5/7 g Int_0^t sin(phi) dt.
-// LIGGGHTS' primitive wall moves at Omega x (the bead centre), |V_wall| =
-// Omega (R - r). Sliding lasts t_s = 2 V_wall / (7 mu g) (slip decelerates at
+// LIGGGHTS' primitive wall moves at Omega' x (the bead centre); drum.in
+// gives it Omega' = Omega R / (R - r), so |V_wall| = Omega R, the drum's
+// surface speed. Sliding lasts t_s = 2 V_wall / (7 mu g) (slip decelerates at
 // mu g (1 + m r^2 / I) = 7/2 mu g; mu = 0.95); the window starts 50 contact
 // durations (5 ms) later, when the tangential spring has settled.
 // Tolerances:
@@ -224,8 +226,9 @@ TEST_F(DrumBalance, GridStartSplitsAtTheMedianColumn)
 //    (trapezoids over the 1e-4 s snapshots): 1e-4 of 2/7 V_wall, from the
 //    snapshots' single precision and the trapezoid rule (both < 1e-6) and the
 //    rest of the tangential spring's oscillation; measured 5e-6. The same
-//    formula with V_wall = Omega R (the wall's own surface speed) lies
-//    r / (R - r) = 0.67 % away: 67 tolerances, which the test asserts;
+//    formula with V_wall = Omega (R - r) (LIGGGHTS' primitive wall fed the
+//    drum's Omega uncorrected) lies r / R = 0.67 % away: 67 tolerances,
+//    which the test asserts;
 //  - against 2/7 Omega (R - r) alone, the pendulum term bounded: the bead
 //    has moved s <= 2/7 V_wall t along the wall, sin(phi) <= s / (R - r), so
 //    |5/7 g Int sin(phi)| <= 5/7 g/(R - r) 2/7 V_wall t^2 / 2 (2.7 % of
@@ -276,7 +279,7 @@ TEST_F(DrumCylinder, SingleBeadRollsAtTwoSeventhsOfTheWallSpeed)
         ASSERT_EQ(r.status, 0) << r.output;
         ASSERT_NE(r.output.find("drum: done, 1 beads kept"), std::string::npos) << r.output;
         const std::vector<Sample> h = beadHistory(dir, name);
-        const double omega = 2 * M_PI * rpm / 60, vWall = omega * (kR - kr), vRoll = 2.0 / 7.0 * vWall;
+        const double omega = 2 * M_PI * rpm / 60, vWall = omega * kR, vRoll = 2.0 / 7.0 * vWall;
         const double tSlide = 2 * std::fabs(vWall) / (7 * kMu * kG), tFrom = tSlide + 50 * kTc;
         ASSERT_LT(tFrom, kTime - 0.002);
         const double tol = 1e-4 * std::fabs(vRoll);
@@ -289,8 +292,8 @@ TEST_F(DrumCylinder, SingleBeadRollsAtTwoSeventhsOfTheWallSpeed)
             ++checked;
             const double pendulum = 5.0 / 7.0 * kG * integral;
             EXPECT_NEAR(h[i].v, vRoll - pendulum, tol) << "t " << h[i].t;
-            // the wall's own surface speed Omega R would be 0.67 % off
-            EXPECT_GT(std::fabs(h[i].v - (2.0 / 7.0 * omega * kR - pendulum)), 10 * tol) << "t " << h[i].t;
+            // Omega (R - r), the uncorrected primitive wall, would be 0.67 % off
+            EXPECT_GT(std::fabs(h[i].v - (2.0 / 7.0 * omega * (kR - kr) - pendulum)), 10 * tol) << "t " << h[i].t;
             // without the pendulum correction, within its bound
             const double bound = 5.0 / 7.0 * kG / (kR - kr) * std::fabs(vRoll) * h[i].t * h[i].t / 2;
             EXPECT_NEAR(h[i].v, vRoll, bound + tol) << "t " << h[i].t;
@@ -316,7 +319,7 @@ TEST_F(DrumCylinder, SingleBeadRollsAtTwoSeventhsOfTheWallSpeed)
 // across the axis.
 TEST_F(DrumCylinder, ShearAlongTheAxisTranslatesTheWall)
 {
-    writeVariant(dir / "shearx.in", "xcylinder ${R} 0.0 0.0 shear y ${omega} store_force yes ${wallopts}",
+    writeVariant(dir / "shearx.in", "xcylinder ${R} 0.0 0.0 shear y ${omega_wall} store_force yes ${wallopts}",
                  "xcylinder ${R} 0.0 0.0 shear x ${omega} store_force yes ${wallopts}");
     const Result r = shell(kMpirun1 + LIGGGHTS_LAUNCHER + kPinned +
                                " -in shearx.in -var start single -var wall cylinder -var rpm 21 -var time 0.02 -var dumpdt 0.02 -var name shearx",
