@@ -1,5 +1,6 @@
 """The steady-state study driver end to end on a tiny drum (tools/drum/steady.py): a run
-interrupted in the middle and resumed gives the same averages as an uninterrupted one.
+interrupted in the middle and resumed gives the same averages as an uninterrupted one, both on
+the same machine (from its segments in post/) and on a fresh clone (from the checkpoint in docs/).
 Runs LIGGGHTS (LIGGGHTS, DRUM_METRICS from the environment, as CTest sets them)."""
 
 import json
@@ -20,38 +21,50 @@ SETTINGS = ["--speeds", "21", "--period", "0.006", "--var", "fill", "0.05", "--v
             "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.08"]
 
 
-def command(name, docs):
-    return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *SETTINGS]
+def command(name, docs, *extra):
+    return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *SETTINGS, *extra]
+
+
+def kill_after_first_segment(cmd, recorded_file):
+    """Starts the study and kills it (with its LIGGGHTS) at once when `recorded_file` says a
+    segment is recorded: a later segment may already be under way, or not. Returns what was
+    recorded."""
+    p = subprocess.Popen(cmd, cwd=REPO, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and p.poll() is None:
+        try:
+            if json.loads(recorded_file.read_text())["segments"] >= 1:
+                break
+        except (OSError, ValueError):
+            pass  # not there yet, or being written
+        time.sleep(0.2)
+    assert p.poll() is None, "the study ended before it could be interrupted"
+    os.killpg(p.pid, signal.SIGKILL)
+    p.wait()
+    return json.loads(recorded_file.read_text())["segments"]
 
 
 class InterruptedStudy(unittest.TestCase):
-    def setUp(self):
-        self.tmp = Path(tempfile.mkdtemp(prefix="steady_e2e_"))
-        self.names = [f"e2e_steady_{os.getpid()}_{k}" for k in ("whole", "cut")]
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_e2e_"))
+        cls.names = [f"e2e_steady_{os.getpid()}_{k}" for k in ("whole", "cut", "clone")]
+        subprocess.run(command(cls.names[0], cls.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
 
-    def tearDown(self):
-        shutil.rmtree(self.tmp, ignore_errors=True)
-        for n in self.names:
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+        for n in cls.names:
             shutil.rmtree(REPO / "post" / n, ignore_errors=True)
 
     def test_interrupted_and_resumed_gives_the_same_averages(self):
-        whole, cut = self.names
-        subprocess.run(command(whole, self.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
-
-        # the same study, killed (with its LIGGGHTS) once the first segment is recorded
-        progress = REPO / "post" / cut / "21rpm_progress.json"
-        p = subprocess.Popen(command(cut, self.tmp / "cut"), cwd=REPO, start_new_session=True,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        deadline = time.monotonic() + 300
-        while time.monotonic() < deadline and p.poll() is None:
-            if progress.exists() and json.loads(progress.read_text())["segments"] >= 1:
-                break
-            time.sleep(0.2)
-        self.assertIsNone(p.poll(), "the study ended before it could be interrupted")
-        os.killpg(p.pid, signal.SIGKILL)  # at once: a later segment may already be under way, or not
-        p.wait()
-        recorded = json.loads(progress.read_text())["segments"]
+        cut = self.names[1]
+        recorded = kill_after_first_segment(command(cut, self.tmp / "cut"), REPO / "post" / cut / "21rpm_progress.json")
         self.assertLess(recorded, 3, "killed after the last segment: nothing left to resume")
+        # --checkpoint-now puts the last recorded segment into docs/ (and runs nothing)
+        subprocess.run(command(cut, self.tmp / "cut", "--checkpoint-now"), cwd=REPO, check=True, capture_output=True)
+        part = self.tmp / "cut" / cut / "21rpm" / "partial"
+        self.assertEqual(json.loads((part / "progress.json").read_text())["segments"], recorded)
         resumed = subprocess.run(command(cut, self.tmp / "cut"), cwd=REPO, capture_output=True, text=True)
         said = resumed.stdout + resumed.stderr
         self.assertEqual(resumed.returncode, 0, said[-3000:])
@@ -59,9 +72,32 @@ class InterruptedStudy(unittest.TestCase):
         self.assertIn(f"segment {recorded + 1}:", said)
         for k in range(1, recorded + 1):
             self.assertNotIn(f"segment {k}:", said)
+        self.assertFalse(part.exists(), "a finished speed leaves no checkpoint behind")
+        self.assertSameResults(cut)
 
+    def test_resumed_on_a_fresh_clone_from_the_checkpoint(self):
+        clone = self.names[2]
+        docs = self.tmp / "clone"
+        part = docs / clone / "21rpm" / "partial"
+        # checkpoint after every segment; killed once one is checkpointed
+        recorded = kill_after_first_segment(command(clone, docs, "--checkpoint-minutes", "0"), part / "progress.json")
+        self.assertLess(recorded, 3, "killed after the last segment: nothing left to resume")
+        self.assertTrue((part / "state.restart.gz").exists() and (part / "metrics_cache.csv").exists())
+        shutil.rmtree(REPO / "post" / clone)  # a fresh clone has no post/: no segments, no snapshots
+        resumed = subprocess.run(command(clone, docs), cwd=REPO, capture_output=True, text=True)
+        said = resumed.stdout + resumed.stderr
+        self.assertEqual(resumed.returncode, 0, said[-3000:])
+        self.assertIn("resuming from the checkpoint", said)
+        self.assertIn(f"segment {recorded + 1}:", said)
+        for k in range(1, recorded + 1):
+            self.assertNotIn(f"segment {k}:", said)
+        self.assertFalse(part.exists(), "a finished speed leaves no checkpoint behind")
+        self.assertSameResults(clone)
+
+    def assertSameResults(self, name):
+        whole = self.names[0]
         a = (self.tmp / "whole" / whole / "21rpm" / "series_average.csv").read_text().splitlines()
-        b = (self.tmp / "cut" / cut / "21rpm" / "series_average.csv").read_text().splitlines()
+        b = (self.tmp / name.rsplit("_", 1)[1] / name / "21rpm" / "series_average.csv").read_text().splitlines()
         self.assertEqual(a[0], b[0])
         for x, y in zip(a[1].split(","), b[1].split(",")):
             if x in ("nan", "") or y in ("nan", ""):
@@ -70,7 +106,7 @@ class InterruptedStudy(unittest.TestCase):
                 self.assertAlmostEqual(float(x), float(y), delta=1e-9 * max(1.0, abs(float(x))), msg=a[0])
         # the series too, snapshot by snapshot
         self.assertEqual((self.tmp / "whole" / whole / "21rpm" / "series_metrics.csv").read_text(),
-                         (self.tmp / "cut" / cut / "21rpm" / "series_metrics.csv").read_text())
+                         (self.tmp / name.rsplit("_", 1)[1] / name / "21rpm" / "series_metrics.csv").read_text())
 
 
 if __name__ == "__main__":

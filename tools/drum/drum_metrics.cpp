@@ -4,10 +4,10 @@
 //   drum_metrics series --prefix post/drum_21rpm --dt 1e-5 --rpm 21 [--skip T0] [--until T1]
 //                       [--out O] [--average steady|all]
 //       O_metrics.csv (time_s,beads,wall_contacts,<metric columns>), O_metrics.png,
-//                       [--batch-seconds B]
+//                       [--batch-seconds B] [--cache C]
 //       O_average.csv (rpm,beads,steady_from_s,snapshots,batches,<metric column, its _se_ column>...)
 //   drum_metrics steady --prefix P --dt DT --rpm RPM --batch-seconds B [--target Hc=0.0003 ...]
-//                       [--min-batches 5] [--skip T0]
+//                       [--min-batches 5] [--skip T0] [--cache C]
 //       the stop rule: one CSV row settled,steady_from_s,snapshots,batches,done,<metric>,<metric>_se_<unit>...
 //   drum_metrics table --out post/sweep post/drum_*rpm_average.csv
 //       the averages by column name, one row per run sorted by rpm: O.csv, O.md, O.png
@@ -114,15 +114,90 @@ std::vector<double> finiteTail(const std::vector<double>& v, int from)
     return out;
 }
 
-// The metrics of the snapshots of `prefix` between skip and until (at least 2).
-std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, double rpm, double skip, double until)
+// The metrics cache (--cache FILE): one row per snapshot, step,time_s,beads,
+// wall_contacts,<metric columns>. A long run re-checks its stop rule after
+// every segment without re-reading every snapshot, and a study resumed on
+// another machine keeps the series of snapshots it no longer has.
+using Cache = std::map<long, drum::BedMetrics>;
+
+std::vector<std::string> cacheColumns()
+{
+    std::vector<std::string> c = {"step", "time_s", "beads", "wall_contacts"};
+    for (const drum::Metric& m : table()) c.push_back(m.column());
+    return c;
+}
+
+double parseNumber(const std::string& cell, const std::string& file);
+
+Cache readCache(const std::string& file)
+{
+    Cache cache;
+    std::ifstream in(file);
+    if (!in) return cache;  // none yet
+    std::string line, cell;
+    std::getline(in, line);
+    std::vector<std::string> names;
+    for (std::stringstream ss(line); std::getline(ss, cell, ',');) names.push_back(cell);
+    if (names != cacheColumns())
+        throw std::runtime_error("metrics cache " + file + " has other columns than this drum_metrics' metric table (" +
+                                 line + "); move it away to measure the snapshots afresh");
+    for (int n = 2; std::getline(in, line); ++n) {
+        if (line.empty()) continue;
+        std::vector<double> v;
+        for (std::stringstream ss(line); std::getline(ss, cell, ',');) v.push_back(parseNumber(cell, file));
+        if (v.size() != names.size())
+            throw std::runtime_error("metrics cache " + file + ", line " + std::to_string(n) + ": " +
+                                     std::to_string(v.size()) + " cells, expected " + std::to_string(names.size()));
+        drum::BedMetrics m;
+        m.time = v[1], m.beads = int(v[2]), m.wallContacts = int(v[3]);
+        m.values.assign(v.begin() + 4, v.end());
+        cache[std::lround(v[0])] = m;
+    }
+    return cache;
+}
+
+void writeCache(const std::string& file, const Cache& cache)
+{
+    const std::string tmp = file + ".tmp";  // whole or not at all: a run may be interrupted here
+    {
+        std::ofstream out(tmp);
+        writeRow(out, cacheColumns());
+        for (const auto& [step, m] : cache) {
+            std::vector<std::string> row = {std::to_string(step), number(m.time), std::to_string(m.beads),
+                                            std::to_string(m.wallContacts)};
+            for (double x : m.values) row.push_back(number(x));
+            writeRow(out, row);
+        }
+        if (!out) throw std::runtime_error("cannot write " + tmp);
+    }
+    fs::rename(tmp, file);
+}
+
+// The metrics of the snapshots of `prefix` between skip and until (at least
+// 2); with a cache file, snapshots measured before are read from it (also
+// those whose files are gone) and the new ones are added to it.
+std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, double rpm, double skip, double until,
+                                         const std::string& cacheFile = "")
 {
     const double omegaSign = rpm >= 0 ? 1.0 : -1.0;
+    Cache cache = cacheFile.empty() ? Cache{} : readCache(cacheFile);
+    bool added = false;
+    std::vector<std::pair<long, fs::path>> files;
+    try {
+        files = beadFiles(prefix);
+    } catch (const std::runtime_error&) {
+        if (cache.empty()) throw;  // the cache may hold every snapshot
+    }
+    for (const auto& [step, file] : files) {
+        if (cache.count(step)) continue;
+        cache[step] = drum::measureBed(drum::readBed(file.string(), step * dt), omegaSign);
+        added = true;
+    }
+    if (added && !cacheFile.empty()) writeCache(cacheFile, cache);
     std::vector<drum::BedMetrics> ms;
-    for (const auto& [step, file] : beadFiles(prefix)) {
-        const double t = step * dt;
-        if (t < skip || t > until) continue;
-        ms.push_back(drum::measureBed(drum::readBed(file.string(), t), omegaSign));
+    for (const auto& [step, m] : cache) {
+        if (m.time < skip || m.time > until) continue;
+        ms.push_back(m);
     }
     if (ms.size() < 2)
         throw std::runtime_error("found " + std::to_string(ms.size()) + " snapshot(s) of " + prefix + " between " +
@@ -161,9 +236,9 @@ std::vector<std::vector<double>> watchedSeries(const std::vector<drum::BedMetric
 }
 
 int series(const std::string& prefix, const std::string& outPrefix, double dt, double rpm, double skip, double until,
-           bool steady, double batchSeconds)
+           bool steady, double batchSeconds, const std::string& cacheFile)
 {
-    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, until);
+    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, until, cacheFile);
     const int batchSize = batchSamples(batchSeconds, ms);
     const std::string out = outPrefix.empty() ? prefix : outPrefix;
     const std::string csvFile = out + "_metrics.csv";
@@ -348,10 +423,10 @@ std::vector<std::pair<size_t, double>> parseTargets(const std::vector<std::strin
 
 // The stop rule on one run: one CSV row on stdout.
 int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip, double batchSeconds,
-                  const std::vector<std::string>& targetSpecs, int minBatches)
+                  const std::vector<std::string>& targetSpecs, int minBatches, const std::string& cacheFile)
 {
     const std::vector<std::pair<size_t, double>> targeted = parseTargets(targetSpecs);
-    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300);
+    const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300, cacheFile);
     const int batchSize = batchSamples(batchSeconds, ms);
     std::vector<drum::Target> targets;
     for (const auto& [i, se] : targeted) {
@@ -390,7 +465,9 @@ int main(int argc, char** argv)
 {
     CLI::App app{"Drum metrics (see `drum_metrics metrics`) from LIGGGHTS VTK output"};
     app.require_subcommand(1);
-    std::string prefix, seriesOut, out = "post/sweep", averaging = "steady";
+    std::string prefix, seriesOut, out = "post/sweep", averaging = "steady", cacheFile;
+    const std::string cacheHelp = "metrics cache (CSV): snapshots in it are not read again, new ones are added; "
+                                  "it keeps the series of snapshots whose files are gone";
     double dt = 1e-5, rpm = 0.0, skip = 0.0, until = 1e300;
     std::vector<std::string> files;
     CLI::App* s = app.add_subcommand("series", "metrics of one run over time");
@@ -410,6 +487,7 @@ int main(int argc, char** argv)
                   "batch means over batches of this many seconds (e.g. a revolution, 60/rpm; a multiple of the "
                   "snapshot spacing) instead of 5 batches")
         ->check(CLI::PositiveNumber);
+    s->add_option("--cache", cacheFile, cacheHelp);
     std::vector<std::string> targetSpecs;
     int minBatches = 5;
     CLI::App* st = app.add_subcommand("steady", "the stop rule: settled, and the target standard errors reached?");
@@ -422,6 +500,7 @@ int main(int argc, char** argv)
     st->add_option("--target", targetSpecs, "KEY=SE in the metric's unit (default: Hc=0.0003 angle=0.3)");
     st->add_option("--min-batches", minBatches, "fewest whole batches for done")->capture_default_str();
     st->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
+    st->add_option("--cache", cacheFile, cacheHelp);
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
     t->add_option("--out", out, "output prefix")->capture_default_str();
     t->add_option("files", files, "<prefix>_average.csv files")->required();
@@ -439,8 +518,8 @@ int main(int argc, char** argv)
             return 0;
         }
         if (*l) return listMetrics();
-        if (*s) return series(prefix, seriesOut, dt, rpm, skip, until, averaging == "steady", batchSeconds);
-        if (*st) return steadyVerdict(prefix, dt, rpm, skip, batchSeconds, targetSpecs, minBatches);
+        if (*s) return series(prefix, seriesOut, dt, rpm, skip, until, averaging == "steady", batchSeconds, cacheFile);
+        if (*st) return steadyVerdict(prefix, dt, rpm, skip, batchSeconds, targetSpecs, minBatches, cacheFile);
         return crossSpeedTable(out, files);
     } catch (const std::exception& e) {
         std::cerr << "drum_metrics: " << e.what() << "\n";

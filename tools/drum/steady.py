@@ -13,6 +13,12 @@ the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, and with
 driver commits them. Rerunning the command continues from what is committed (and from the
 segments in post/NAME/ of a speed in progress); a committed speed with other settings stops it.
 
+A speed can outlast a working session (7 rpm: five revolutions are 43 s simulated, hours of the
+machine). Every --checkpoint-minutes of wall time (and with --checkpoint-now, at once) the speed
+in progress is checkpointed to docs/drum/NAME/<rpm>rpm/partial/: its last segment's end state, the
+per-snapshot metrics so far (drum_metrics' cache: the snapshots themselves stay in post/) and its
+progress, committed with --commit. A rerun on a fresh clone, without post/, goes on from there.
+
   tools/drum/steady.py --name study_thesis --period 0.024 --var dt 2e-5 --var exact on --commit
   tools/drum/steady.py --name tiny --speeds 21,28 --var fill 0.05 --segment 0.02 --cap 0.06 --settle 0.02
 """
@@ -102,6 +108,16 @@ def verdict(row, simulated, cap):
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
 
+def trim_cache(src, dst, last_step):
+    """drum_metrics' metrics cache `src` (first column: the step) without the snapshots after
+    `last_step` (those of a segment that was not recorded), written to `dst`."""
+    lines = Path(src).read_text().splitlines(keepends=True)
+    kept = lines[:1] + [line for line in lines[1:] if line.strip() and int(line.split(",", 1)[0]) <= last_step]
+    tmp = Path(str(dst) + ".tmp")
+    tmp.write_text("".join(kept))
+    tmp.replace(dst)
+
+
 def commit(message, *paths, tries=10):
     """Commits these paths only (whatever else is staged stays staged); retries while another git
     process holds the index, so a study can run beside other work in the same repository."""
@@ -146,6 +162,55 @@ class Study:
     def prefix(self, rpm):
         return self.work / f"{rpm}rpm"
 
+    def cache(self, rpm):
+        """drum_metrics' per-snapshot metrics of the speed so far (all its segments)."""
+        return self.work / f"{rpm}rpm_metrics_cache.csv"
+
+    def partial(self, rpm):
+        """The committed checkpoint of a speed in progress."""
+        return self.docs / f"{rpm}rpm" / "partial"
+
+    def checkpoint(self, rpm, done):
+        """The speed's last recorded segment into partial/ (committed with --commit)."""
+        part = self.partial(rpm)
+        part.mkdir(parents=True, exist_ok=True)
+        with open(done["state"], "rb") as src, gzip.open(part / "state.restart.gz.tmp", "wb", compresslevel=9) as dst:
+            shutil.copyfileobj(src, dst)
+        (part / "state.restart.gz.tmp").replace(part / "state.restart.gz")
+        if not self.cache(rpm).exists():
+            self.check(rpm)  # measures the snapshots into the cache
+        trim_cache(self.cache(rpm), part / "metrics_cache.csv", done["last_step"])
+        harness.write_json(part / "progress.json", {**done, "state": "state.restart.gz"})
+        if self.args.commit:
+            commit(f"Drum study {self.args.name}: {rpm} rpm checkpoint ({done['simulated_s']:g} s simulated, "
+                   f"{done['segments']} segments)", part)
+        harness.say(WHO, f"{rpm} rpm: checkpoint of segment {done['segments']} in {part}"
+                         f"{' (committed)' if self.args.commit else ''}")
+
+    def restore(self, rpm, start, start_sha, local):
+        """The committed checkpoint of this speed, if it belongs to this start and these settings
+        and is further on than the segments in post/: unpacked into post/ (returns its progress),
+        else `local`."""
+        part = self.partial(rpm)
+        if not (part / "progress.json").exists():
+            return local
+        saved = harness.read_json(part / "progress.json")
+        if saved["settings"] != self.settings or saved.get("start_sha256") != start_sha:
+            return local
+        if local and local["segments"] >= saved["segments"]:
+            return local
+        for f in self.work.glob(f"{rpm}rpm[_.]*"):
+            f.unlink()
+        state = self.work / f"{rpm}rpm_seg{saved['segments']}.restart"
+        with gzip.open(part / "state.restart.gz", "rb") as src, open(state, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        shutil.copyfile(part / "metrics_cache.csv", self.cache(rpm))
+        done = {**saved, "start": str(start), "state": str(state)}
+        harness.write_json(self.work / f"{rpm}rpm_progress.json", done)
+        harness.say(WHO, f"{rpm} rpm: resuming from the checkpoint in {part} (segment {saved['segments']}, "
+                         f"{saved['simulated_s']:g} s simulated)")
+        return done
+
     def state(self, rpm):
         """The committed end state of a speed, unpacked into post/ (LIGGGHTS reads plain files)."""
         packed = self.docs / f"{rpm}rpm" / "state.restart.gz"
@@ -165,29 +230,37 @@ class Study:
         return log
 
     def check(self, rpm):
-        args = ["steady", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm,
+        args = ["steady", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm, "--cache", self.cache(rpm),
                 "--batch-seconds", f"{revolution(rpm):.10g}", "--min-batches", self.args.min_batches]
         for key, value in self.args.targets.items():
             args += ["--target", f"{key}={value:g}"]
         return harness.read_csv_text(harness.tool("drum_metrics", *args))[0]
 
-    def run_speed(self, rpm, start):
+    def run_speed(self, rpm, start, start_sha):
         """Segments until the verdict; returns (verdict, progress record, end-state restart).
         After each segment its end state is copied to <rpm>rpm_seg<k>.restart and only then
         recorded in <rpm>rpm_progress.json: an interruption at any point resumes from a whole
-        state, and snapshots written after it (by an interrupted segment) are removed."""
+        state, and snapshots written after it (by an interrupted segment) are removed. Without
+        segments in post/ (a fresh clone) a committed checkpoint is the place to resume."""
         a = self.args
         self.work.mkdir(parents=True, exist_ok=True)
         progress = self.work / f"{rpm}rpm_progress.json"
         done = harness.read_json(progress) if progress.exists() else None
-        if not done or done["settings"] != self.settings or done["start"] != str(start):
+        if done and (done["settings"] != self.settings or done["start"] != str(start)
+                     or done.get("start_sha256", start_sha) != start_sha):
+            done = None
+        done = self.restore(rpm, start, start_sha, done)
+        if not done:
             for f in self.work.glob(f"{rpm}rpm[_.]*"):
                 f.unlink()
-            done = {"settings": self.settings, "start": str(start), "segments": 0, "simulated_s": 0.0,
-                    "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
+            done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha, "segments": 0,
+                    "simulated_s": 0.0, "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
+        done.setdefault("start_sha256", start_sha)
         for step, f in harness.snapshots(self.prefix(rpm)):
             if done["last_step"] >= 0 and step > done["last_step"]:
                 f.unlink()
+        if done["last_step"] >= 0 and self.cache(rpm).exists():
+            trim_cache(self.cache(rpm), self.cache(rpm), done["last_step"])
         outcome = "continue"
         while outcome == "continue":
             k = done["segments"] + 1
@@ -196,12 +269,19 @@ class Study:
             log = self.segment(rpm, k, None if grid else Path(done["state"] or start), seconds)
             state = self.work / f"{rpm}rpm_seg{k}.restart"
             shutil.copyfile(self.work / f"{rpm}rpm.restart", state)
-            if done["state"]:
-                Path(done["state"]).unlink(missing_ok=True)
+            previous = done["state"]
             done.update(segments=k, simulated_s=done["simulated_s"] + seconds, cpu_s=done["cpu_s"] + log.cpu_seconds,
                         beads=log.atoms, last_step=harness.snapshots(self.prefix(rpm))[-1][0], state=str(state))
-            harness.write_json(progress, done)
+            # The segment's snapshots go into the metrics cache before it counts as recorded: the
+            # next segment rewrites the snapshot at its first step (the restart's), whose drum
+            # forces differ by the restart's one-step perturbation; the cache keeps this one.
             row = self.check(rpm)
+            harness.write_json(progress, done)
+            if previous:
+                Path(previous).unlink(missing_ok=True)
+            if time.monotonic() - self.last_checkpoint >= 60 * a.checkpoint_minutes:
+                self.checkpoint(rpm, done)
+                self.last_checkpoint = time.monotonic()
             outcome = verdict(row, done["simulated_s"], a.cap)
             errors = ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
             harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
@@ -213,7 +293,9 @@ class Study:
         a = self.args
         out = self.docs / f"{rpm}rpm"
         out.mkdir(parents=True, exist_ok=True)
-        harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}")
+        harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}",
+                            cache=self.cache(rpm))
+        shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
         harness.render(self.prefix(rpm), out / "picture.png")
         with open(restart, "rb") as src, gzip.open(out / "state.restart.gz", "wb", compresslevel=9) as dst:
             shutil.copyfileobj(src, dst)
@@ -245,11 +327,24 @@ class Study:
     def main(self):
         a = self.args
         self.command = "tools/drum/steady.py " + shlex.join(sys.argv[1:])
+        self.last_checkpoint = time.monotonic()
         first, first_sha = self.first_state()
         steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force, first_sha)
         for rpm, done in steps:
             harness.say(WHO, f"plan: {rpm} rpm: {'committed' if done else 'to run'}")
         if a.dry_run:
+            return 0
+        if a.checkpoint_now:
+            previous = None
+            for rpm, done in steps:
+                progress = self.work / f"{rpm}rpm_progress.json"
+                before = self.committed(previous) if previous else None
+                start_sha = before["state_sha256"] if before else first_sha  # None: the grid
+                record = harness.read_json(progress) if not done and progress.exists() else None
+                if (record and record["state"] and record["settings"] == self.settings
+                        and (before or not previous) and record.get("start_sha256", start_sha) == start_sha):
+                    self.checkpoint(rpm, {**record, "start_sha256": start_sha})
+                previous = rpm
             return 0
         previous = None
         for rpm, done in steps:
@@ -257,7 +352,7 @@ class Study:
                 start = self.state(previous) if previous else first
                 start_sha = self.committed(previous)["state_sha256"] if previous else first_sha
                 began = time.monotonic()
-                outcome, record, restart = self.run_speed(rpm, start)
+                outcome, record, restart = self.run_speed(rpm, start, start_sha)
                 self.finish(rpm, outcome, record, restart, start_sha)
                 harness.say(WHO, f"{rpm} rpm took {(time.monotonic() - began) / 60:.1f} min")
             previous = rpm
@@ -286,6 +381,11 @@ def arguments(argv=None):
                    help="where finished speeds go: DOCS/NAME/<rpm>rpm/ and DOCS/NAME.csv (default: docs/drum)")
     p.add_argument("--commit", action="store_true", help="git commit each speed as soon as it is done")
     p.add_argument("--force", action="store_true", help="redo speeds committed with other settings")
+    p.add_argument("--checkpoint-minutes", type=float, default=60.0,
+                   help="checkpoint the speed in progress to docs/ after a segment once this many minutes of wall "
+                        "time have passed since the last (default: %(default)s; 0: after every segment)")
+    p.add_argument("--checkpoint-now", action="store_true",
+                   help="checkpoint the speeds in progress from post/ (their last recorded segment) and stop")
     p.add_argument("--dry-run", action="store_true", help="print the plan, run nothing")
     args = p.parse_args(argv)
     try:

@@ -105,26 +105,27 @@ def machine():
             "liggghts": r.stdout if r.returncode == 0 and r.stdout else "?"}
 
 
-def render(prefix, out, *options, attempts=3):
+def render(prefix, out, *options, attempts=8):
     """A ParaView picture of a run's last snapshot (`xvfb-run -a pvbatch tools/drum/render.py`).
-    On a loaded machine pvbatch can reach xvfb-run's X server before it accepts connections, or
-    two xvfb-run started at once can pick the same display: a failure is retried, the last one raised."""
+    pvbatch opens several X connections, and on a loaded machine one is now and then refused
+    ("bad X server connection": 1 render in 6 to 1 in 2, also against an Xvfb up for minutes); two
+    xvfb-run started at once can also pick the same display: a failure is retried, the last one raised."""
     for attempt in range(attempts):
         try:
             return tool("xvfb-run", "-a", "pvbatch", "tools/drum/render.py", prefix, "--out", out, *options)
         except RunFailed:
             if attempt == attempts - 1:
                 raise
-            time.sleep(1.0 + attempt)
+            time.sleep(1.0)
 
 
-def drum_series(prefix, dt, rpm, out=None, skip=None, until=None, average=None, batch_seconds=None):
+def drum_series(prefix, dt, rpm, out=None, skip=None, until=None, average=None, batch_seconds=None, cache=None):
     """`drum_metrics series` on a run's snapshots (options left out when None); returns its
     printed summary. It writes OUT_metrics.csv, OUT_average.csv and OUT_metrics.png (OUT:
     `out`, or the prefix)."""
     args = ["series", "--prefix", prefix, "--dt", dt, "--rpm", rpm]
     for option, value in (("--out", out), ("--skip", skip), ("--until", until), ("--average", average),
-                          ("--batch-seconds", batch_seconds)):
+                          ("--batch-seconds", batch_seconds), ("--cache", cache)):
         if value is not None:
             args += [option, value]
     return tool("drum_metrics", *args)
