@@ -1,0 +1,66 @@
+"""tools/drum/histories.py: the two-history check's statistics. Two histories drawn from one
+steady state must pass at the stated false-alarm rate, and an offset of a few standard errors
+must be caught (so the check can fail)."""
+
+import math
+import sys
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
+import histories  # noqa: E402
+
+METRICS = [{"column": f"m{i}_u", "se_column": f"m{i}_se_u", "label": f"m{i}", "unit": "u"} for i in range(7)]
+
+
+def history(rng, offsets, batches=5, sigma=1.0):
+    """A study-table row: each metric's batch-means average and SE from `batches` normal batch means."""
+    row = {"batches": float(batches)}
+    for m, off in zip(METRICS, offsets):
+        x = rng.normal(off, sigma, batches)
+        row[m["column"]], row[m["se_column"]] = x.mean(), x.std(ddof=1) / math.sqrt(batches)
+    return row
+
+
+class Histories(unittest.TestCase):
+    def test_welch_dof_of_equal_sides_is_the_pooled_count(self):
+        self.assertAlmostEqual(histories.welch_dof(0.3, 5, 0.3, 5), 8.0)
+        # one side's error dominating: its own n - 1
+        self.assertAlmostEqual(histories.welch_dof(1.0, 5, 1e-6, 50), 4.0, places=6)
+
+    def test_same_state_passes_at_the_stated_rate(self):
+        rng = np.random.default_rng(2026)
+        n = 4000
+        alarms = sum(not all(r["agree"] for r in histories.compare(history(rng, [0] * 7), history(rng, [0] * 7), METRICS))
+                     for _ in range(n))
+        # family-wise at most 0.05 (Bonferroni over 7 independent metrics: 1 - (1 - 0.05/7)^7 = 0.0488;
+        # binomial sd 0.0034). Welch's t with estimated SEs is a little conservative (measured 0.037),
+        # but not so much that it would pass anything: above 0.02
+        self.assertLess(alarms / n, 0.0488 + 4 * math.sqrt(0.0488 * 0.9512 / n), alarms / n)
+        self.assertGreater(alarms / n, 0.02)
+
+    def test_an_offset_of_a_few_standard_errors_is_caught(self):
+        rng = np.random.default_rng(7)
+        # true difference 3 x the combined SE of two 5-batch means (sd 1 each: SE sqrt(2/5))
+        shift = 3 * math.sqrt(2 / 5)
+        caught = sum(not histories.compare(history(rng, [shift] + [0] * 6), history(rng, [0] * 7), METRICS)[0]["agree"]
+                     for _ in range(1000))
+        self.assertGreater(caught / 1000, 0.2)  # power of the Bonferroni t test at dof 8: measured 0.30
+        shift = 8 * math.sqrt(2 / 5)
+        caught = sum(not histories.compare(history(rng, [shift] + [0] * 6), history(rng, [0] * 7), METRICS)[0]["agree"]
+                     for _ in range(1000))
+        self.assertGreater(caught / 1000, 0.95)  # measured 0.998
+
+    def test_undefined_metrics_are_left_out(self):
+        a = history(np.random.default_rng(1), [0] * 7)
+        b = dict(a)
+        b["m3_u"] = float("nan")
+        rows = histories.compare(a, b, METRICS)
+        self.assertEqual([r["metric"] for r in rows], [m["label"] for m in METRICS if m["label"] != "m3"])
+        self.assertTrue(all(r["t"] == 0.0 and r["agree"] for r in rows))
+
+
+if __name__ == "__main__":
+    unittest.main()
