@@ -45,9 +45,13 @@ def _cell(v):
 
 
 def write_json(path, data):
+    """Whole or not at all (through a temporary file): a study's progress record must survive
+    an interruption at any point."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    tmp.replace(path)
     return path
 
 
