@@ -82,7 +82,8 @@ class InterruptedStudy(unittest.TestCase):
         # checkpoint after every segment; killed once one is checkpointed
         recorded = kill_after_first_segment(command(clone, docs, "--checkpoint-minutes", "0"), part / "progress.json")
         self.assertLess(recorded, 3, "killed after the last segment: nothing left to resume")
-        self.assertTrue((part / "state.restart.gz").exists() and (part / "metrics_cache.csv").exists())
+        self.assertEqual(len(list(part.glob("state_seg*.restart.gz"))), 1)
+        self.assertTrue((part / "metrics_cache.csv").exists())
         shutil.rmtree(REPO / "post" / clone)  # a fresh clone has no post/: no segments, no snapshots
         resumed = subprocess.run(command(clone, docs), cwd=REPO, capture_output=True, text=True)
         said = resumed.stdout + resumed.stderr
@@ -93,6 +94,21 @@ class InterruptedStudy(unittest.TestCase):
             self.assertNotIn(f"segment {k}:", said)
         self.assertFalse(part.exists(), "a finished speed leaves no checkpoint behind")
         self.assertSameResults(clone)
+
+    def test_zz_a_verdict_reached_before_an_interruption_stands(self):
+        # the finished study with its results gone, as if killed after its last segment's verdict
+        # and before they were written: the rerun writes them without running another segment
+        whole = self.names[0]
+        out = self.tmp / "whole" / whole / "21rpm"
+        before = (out / "series_average.csv").read_text()
+        (out / "run.json").unlink()
+        (self.tmp / "whole" / f"{whole}.csv").unlink()
+        rerun = subprocess.run(command(whole, self.tmp / "whole"), cwd=REPO, capture_output=True, text=True)
+        said = rerun.stdout + rerun.stderr
+        self.assertEqual(rerun.returncode, 0, said[-3000:])
+        self.assertNotIn("segment", said)
+        self.assertTrue((out / "run.json").exists() and (self.tmp / "whole" / f"{whole}.csv").exists())
+        self.assertEqual((out / "series_average.csv").read_text(), before)
 
     def assertSameResults(self, name):
         whole = self.names[0]

@@ -140,7 +140,8 @@ Cache readCache(const std::string& file)
     for (std::stringstream ss(line); std::getline(ss, cell, ',');) names.push_back(cell);
     if (names != cacheColumns())
         throw std::runtime_error("metrics cache " + file + " has other columns than this drum_metrics' metric table (" +
-                                 line + "); move it away to measure the snapshots afresh");
+                                 line + "); without it the snapshots still on disk are measured afresh, and "
+                                 "the series of those that are gone is lost");
     for (int n = 2; std::getline(in, line); ++n) {
         if (line.empty()) continue;
         std::vector<double> v;
@@ -156,6 +157,16 @@ Cache readCache(const std::string& file)
     return cache;
 }
 
+// All the digits of a double (the cache's values then equal freshly measured ones exactly).
+std::string exact(double x)
+{
+    if (std::isnan(x)) return "nan";
+    std::ostringstream s;
+    s.precision(std::numeric_limits<double>::max_digits10);
+    s << x;
+    return s.str();
+}
+
 void writeCache(const std::string& file, const Cache& cache)
 {
     const std::string tmp = file + ".tmp";  // whole or not at all: a run may be interrupted here
@@ -163,9 +174,9 @@ void writeCache(const std::string& file, const Cache& cache)
         std::ofstream out(tmp);
         writeRow(out, cacheColumns());
         for (const auto& [step, m] : cache) {
-            std::vector<std::string> row = {std::to_string(step), number(m.time), std::to_string(m.beads),
+            std::vector<std::string> row = {std::to_string(step), exact(m.time), std::to_string(m.beads),
                                             std::to_string(m.wallContacts)};
-            for (double x : m.values) row.push_back(number(x));
+            for (double x : m.values) row.push_back(exact(x));
             writeRow(out, row);
         }
         if (!out) throw std::runtime_error("cannot write " + tmp);
@@ -181,6 +192,10 @@ std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, d
 {
     const double omegaSign = rpm >= 0 ? 1.0 : -1.0;
     Cache cache = cacheFile.empty() ? Cache{} : readCache(cacheFile);
+    for (const auto& [step, m] : cache)
+        if (std::fabs(m.time - step * dt) > 1e-9 * std::fabs(step * dt))
+            throw std::runtime_error("metrics cache " + cacheFile + " has step " + std::to_string(step) + " at t = " +
+                                     number(m.time) + " s: it was measured with another --dt than " + number(dt));
     bool added = false;
     std::vector<std::pair<long, fs::path>> files;
     try {

@@ -26,6 +26,7 @@ progress, committed with --commit. A rerun on a fresh clone, without post/, goes
 import gzip
 import hashlib
 import math
+import os
 import shlex
 import shutil
 import subprocess
@@ -108,12 +109,30 @@ def verdict(row, simulated, cap):
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
 
+def pack(src, dst):
+    """gzip `src` to `dst` through a temporary file, with a fixed header time (the same state
+    packs to the same bytes, so git stores it once)."""
+    tmp = Path(f"{dst}.{os.getpid()}.tmp")
+    with open(src, "rb") as f, open(tmp, "wb") as raw, gzip.GzipFile(fileobj=raw, mode="wb", compresslevel=9,
+                                                                     mtime=0) as z:
+        shutil.copyfileobj(f, z)
+    tmp.replace(dst)
+
+
+def unpack(src, dst):
+    """gunzip `src` to `dst` through a temporary file."""
+    tmp = Path(f"{dst}.{os.getpid()}.tmp")
+    with gzip.open(src, "rb") as f, open(tmp, "wb") as out:
+        shutil.copyfileobj(f, out)
+    tmp.replace(dst)
+
+
 def trim_cache(src, dst, last_step):
     """drum_metrics' metrics cache `src` (first column: the step) without the snapshots after
     `last_step` (those of a segment that was not recorded), written to `dst`."""
     lines = Path(src).read_text().splitlines(keepends=True)
     kept = lines[:1] + [line for line in lines[1:] if line.strip() and int(line.split(",", 1)[0]) <= last_step]
-    tmp = Path(str(dst) + ".tmp")
+    tmp = Path(f"{dst}.{os.getpid()}.tmp")
     tmp.write_text("".join(kept))
     tmp.replace(dst)
 
@@ -151,8 +170,8 @@ class Study:
             return given, sha256(given)
         plain = self.work / ("start_" + given.stem)
         plain.parent.mkdir(parents=True, exist_ok=True)
-        with gzip.open(given, "rb") as src, open(plain, "wb") as dst:
-            shutil.copyfileobj(src, dst)
+        if not plain.exists() or plain.stat().st_mtime < given.stat().st_mtime:
+            unpack(given, plain)
         return plain, sha256(given)
 
     def committed(self, rpm):
@@ -171,16 +190,25 @@ class Study:
         return self.docs / f"{rpm}rpm" / "partial"
 
     def checkpoint(self, rpm, done):
-        """The speed's last recorded segment into partial/ (committed with --commit)."""
+        """The speed's last recorded segment into partial/ (committed with --commit): the state
+        under its segment's name, then the metrics cache, and last the progress record naming
+        them, so an interruption leaves the previous checkpoint whole. A speed that has reached
+        its verdict is not checkpointed: it is finished where its snapshots are."""
+        if done.get("outcome", "continue") != "continue":
+            harness.say(WHO, f"{rpm} rpm has reached its verdict ({done['outcome']}): rerun the study here to "
+                             "finish it (its picture needs the snapshots in post/)")
+            return
         part = self.partial(rpm)
         part.mkdir(parents=True, exist_ok=True)
-        with open(done["state"], "rb") as src, gzip.open(part / "state.restart.gz.tmp", "wb", compresslevel=9) as dst:
-            shutil.copyfileobj(src, dst)
-        (part / "state.restart.gz.tmp").replace(part / "state.restart.gz")
+        name = f"state_seg{done['segments']}.restart.gz"
+        pack(done["state"], part / name)
         if not self.cache(rpm).exists():
             self.check(rpm)  # measures the snapshots into the cache
         trim_cache(self.cache(rpm), part / "metrics_cache.csv", done["last_step"])
-        harness.write_json(part / "progress.json", {**done, "state": "state.restart.gz"})
+        harness.write_json(part / "progress.json", {**done, "state": name})
+        for old in part.glob("state_seg*.restart.gz"):
+            if old.name != name:
+                old.unlink()
         if self.args.commit:
             commit(f"Drum study {self.args.name}: {rpm} rpm checkpoint ({done['simulated_s']:g} s simulated, "
                    f"{done['segments']} segments)", part)
@@ -202,9 +230,8 @@ class Study:
         for f in self.work.glob(f"{rpm}rpm[_.]*"):
             f.unlink()
         state = self.work / f"{rpm}rpm_seg{saved['segments']}.restart"
-        with gzip.open(part / "state.restart.gz", "rb") as src, open(state, "wb") as dst:
-            shutil.copyfileobj(src, dst)
-        shutil.copyfile(part / "metrics_cache.csv", self.cache(rpm))
+        unpack(part / saved["state"], state)
+        trim_cache(part / "metrics_cache.csv", self.cache(rpm), saved["last_step"])
         done = {**saved, "start": str(start), "state": str(state)}
         harness.write_json(self.work / f"{rpm}rpm_progress.json", done)
         harness.say(WHO, f"{rpm} rpm: resuming from the checkpoint in {part} (segment {saved['segments']}, "
@@ -216,8 +243,7 @@ class Study:
         packed = self.docs / f"{rpm}rpm" / "state.restart.gz"
         plain = self.work / f"{rpm}rpm_committed.restart"
         if not plain.exists() or plain.stat().st_mtime < packed.stat().st_mtime:
-            with gzip.open(packed, "rb") as src, open(plain, "wb") as dst:
-                shutil.copyfileobj(src, dst)
+            unpack(packed, plain)
         return plain
 
     def segment(self, rpm, k, start, seconds):
@@ -261,7 +287,7 @@ class Study:
                 f.unlink()
         if done["last_step"] >= 0 and self.cache(rpm).exists():
             trim_cache(self.cache(rpm), self.cache(rpm), done["last_step"])
-        outcome = "continue"
+        outcome = done.get("outcome", "continue")  # a verdict reached before an interruption stands
         while outcome == "continue":
             k = done["segments"] + 1
             grid = done["state"] is None and start is None
@@ -276,13 +302,13 @@ class Study:
             # next segment rewrites the snapshot at its first step (the restart's), whose drum
             # forces differ by the restart's one-step perturbation; the cache keeps this one.
             row = self.check(rpm)
+            outcome = done["outcome"] = verdict(row, done["simulated_s"], a.cap)
             harness.write_json(progress, done)
             if previous:
                 Path(previous).unlink(missing_ok=True)
-            if time.monotonic() - self.last_checkpoint >= 60 * a.checkpoint_minutes:
+            if outcome == "continue" and time.monotonic() - self.last_checkpoint >= 60 * a.checkpoint_minutes:
                 self.checkpoint(rpm, done)
                 self.last_checkpoint = time.monotonic()
-            outcome = verdict(row, done["simulated_s"], a.cap)
             errors = ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
             harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
                              f"{row['batches']} batches, {errors}: {outcome}")
@@ -295,16 +321,9 @@ class Study:
         out.mkdir(parents=True, exist_ok=True)
         harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}",
                             cache=self.cache(rpm))
-        shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
         harness.render(self.prefix(rpm), out / "picture.png")
-        with open(restart, "rb") as src, gzip.open(out / "state.restart.gz", "wb", compresslevel=9) as dst:
-            shutil.copyfileobj(src, dst)
+        pack(restart, out / "state.restart.gz")
         average = harness.read_csv(out / "series_average.csv")[0]
-        record = {"rpm": rpm, "settings": self.settings, "outcome": outcome, "segments": done["segments"],
-                  "simulated_s": done["simulated_s"], "cpu_s": done["cpu_s"], "beads": done["beads"],
-                  "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
-                  "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
-        harness.write_json(out / "run.json", record)
         steady_from = average["steady_from_s"]
         t_end = max(s for s, _ in harness.snapshots(self.prefix(rpm))) * self.dt
         averaged = t_end - steady_from if not math.isnan(steady_from) else float("nan")
@@ -319,6 +338,13 @@ class Study:
         rows = [r for r in (harness.read_csv(table) if table.exists() else []) if r["rpm"] != rpm]
         rows = sorted(rows + [row], key=lambda r: r["rpm"])
         harness.write_csv(table, rows, TABLE + [k for k in row if k not in TABLE])
+        # run.json last: it marks the speed done (the plan reads it)
+        record = {"rpm": rpm, "settings": self.settings, "outcome": outcome, "segments": done["segments"],
+                  "simulated_s": done["simulated_s"], "cpu_s": done["cpu_s"], "beads": done["beads"],
+                  "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
+                  "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
+        harness.write_json(out / "run.json", record)
+        shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
         if a.commit:
             commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table)
         harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
@@ -340,12 +366,23 @@ class Study:
                 progress = self.work / f"{rpm}rpm_progress.json"
                 before = self.committed(previous) if previous else None
                 start_sha = before["state_sha256"] if before else first_sha  # None: the grid
+                start = self.work / f"{previous}rpm_committed.restart" if previous else first
                 record = harness.read_json(progress) if not done and progress.exists() else None
-                if (record and record["state"] and record["settings"] == self.settings
-                        and (before or not previous) and record.get("start_sha256", start_sha) == start_sha):
-                    self.checkpoint(rpm, {**record, "start_sha256": start_sha})
+                if (record and record["state"] and record["settings"] == self.settings and (before or not previous)
+                        and record["start"] == str(start) and record.get("start_sha256", start_sha) == start_sha):
+                    try:
+                        self.checkpoint(rpm, {**record, "start_sha256": start_sha})
+                    except FileNotFoundError:  # a running study moved on to its next segment meanwhile
+                        self.checkpoint(rpm, {**harness.read_json(progress), "start_sha256": start_sha})
                 previous = rpm
             return 0
+        if a.commit:  # results an interrupted run wrote but did not commit
+            paths = [self.docs.with_suffix(".csv")] + [self.docs / f"{r}rpm" for r, _ in steps]
+            paths = [p for p in paths if p.exists()]
+            status = subprocess.run(["git", "status", "--porcelain", "--", *map(str, paths)], cwd=harness.REPO,
+                                    capture_output=True, text=True).stdout if paths else ""
+            if status.strip():
+                commit(f"Drum study {a.name}: results written before an interruption", *paths)
         previous = None
         for rpm, done in steps:
             if not done:
@@ -381,7 +418,7 @@ def arguments(argv=None):
                    help="where finished speeds go: DOCS/NAME/<rpm>rpm/ and DOCS/NAME.csv (default: docs/drum)")
     p.add_argument("--commit", action="store_true", help="git commit each speed as soon as it is done")
     p.add_argument("--force", action="store_true", help="redo speeds committed with other settings")
-    p.add_argument("--checkpoint-minutes", type=float, default=60.0,
+    p.add_argument("--checkpoint-minutes", type=float, default=120.0,
                    help="checkpoint the speed in progress to docs/ after a segment once this many minutes of wall "
                         "time have passed since the last (default: %(default)s; 0: after every segment)")
     p.add_argument("--checkpoint-now", action="store_true",
