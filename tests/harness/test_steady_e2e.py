@@ -65,13 +65,7 @@ class InterruptedStudy(unittest.TestCase):
         subprocess.run(command(cut, self.tmp / "cut", "--checkpoint-now"), cwd=REPO, check=True, capture_output=True)
         part = self.tmp / "cut" / cut / "21rpm" / "partial"
         self.assertEqual(json.loads((part / "progress.json").read_text())["segments"], recorded)
-        resumed = subprocess.run(command(cut, self.tmp / "cut"), cwd=REPO, capture_output=True, text=True)
-        said = resumed.stdout + resumed.stderr
-        self.assertEqual(resumed.returncode, 0, said[-3000:])
-        # it went on from the last recorded segment, not from the grid again
-        self.assertIn(f"segment {recorded + 1}:", said)
-        for k in range(1, recorded + 1):
-            self.assertNotIn(f"segment {k}:", said)
+        self.resume(cut, self.tmp / "cut", recorded)
         self.assertFalse(part.exists(), "a finished speed leaves no checkpoint behind")
         self.assertSameResults(cut)
 
@@ -85,13 +79,7 @@ class InterruptedStudy(unittest.TestCase):
         self.assertEqual(len(list(part.glob("state_seg*.restart.gz"))), 1)
         self.assertTrue((part / "metrics_cache.csv").exists())
         shutil.rmtree(REPO / "post" / clone)  # a fresh clone has no post/: no segments, no snapshots
-        resumed = subprocess.run(command(clone, docs), cwd=REPO, capture_output=True, text=True)
-        said = resumed.stdout + resumed.stderr
-        self.assertEqual(resumed.returncode, 0, said[-3000:])
-        self.assertIn("resuming from the checkpoint", said)
-        self.assertIn(f"segment {recorded + 1}:", said)
-        for k in range(1, recorded + 1):
-            self.assertNotIn(f"segment {k}:", said)
+        self.assertIn("resuming from the checkpoint", self.resume(clone, docs, recorded))
         self.assertFalse(part.exists(), "a finished speed leaves no checkpoint behind")
         self.assertSameResults(clone)
 
@@ -109,6 +97,17 @@ class InterruptedStudy(unittest.TestCase):
         self.assertNotIn("segment", said)
         self.assertTrue((out / "run.json").exists() and (self.tmp / "whole" / f"{whole}.csv").exists())
         self.assertEqual((out / "series_average.csv").read_text(), before)
+
+    def resume(self, name, docs, recorded):
+        """Reruns the study; it must go on from the last recorded segment, not from the grid
+        again. Returns what it said."""
+        resumed = subprocess.run(command(name, docs), cwd=REPO, capture_output=True, text=True)
+        said = resumed.stdout + resumed.stderr
+        self.assertEqual(resumed.returncode, 0, said[-3000:])
+        self.assertIn(f"segment {recorded + 1}:", said)
+        for k in range(1, recorded + 1):
+            self.assertNotIn(f"segment {k}:", said)
+        return said
 
     def assertSameResults(self, name):
         whole = self.names[0]
