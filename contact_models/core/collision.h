@@ -203,8 +203,10 @@ constexpr double kFreshTouchSteps = 1.5;
 // The mean of |k x + c u| over [lo, hi] along the continuous motion `now`,
 // per step: |u(lo) - u(hi)| / dt, split where the force turns attractive
 // (limitForce off), which marks the contact `attractive` from then on;
-// [lo, hi] (under half a period) holds one zero of the force.
-inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo, double hi)
+// [lo, hi] (under half a period) holds one zero of the force. Out of line:
+// the common step calls it only where the force turns.
+[[gnu::noinline]] inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo,
+                                             double hi)
 {
     const FreeOscillator& o = law.o;
     const Motion a = o.after(now, lo), b = o.after(now, hi);
@@ -218,9 +220,13 @@ inline double frictionOver(const StepLaw& law, CollisionState& state, const Moti
     return (std::fabs(a.u - least) + std::fabs(least - b.u)) / law.dt;
 }
 
-// One step of a contact under `exactCollision`: x the overlap at this step,
-// v the overlap rate at the half step before (positive while approaching).
-inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v)
+namespace detail {
+
+// exactCollisionStep's other steps: a contact's first and last, one that
+// starts again after it ended, one created overlapping. Kept out of the
+// common step, which they would otherwise crowd with their transcendental
+// evaluations.
+[[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v)
 {
     const double dt = law.dt;
     CollisionStep r;
@@ -234,20 +240,9 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
         now = law.o.after({0.0, v}, r.sinceStart);
         state.previousOffset = now.x - x;
     } else {
-        // Under way: the previous sample and this one define the motion. The
-        // common case costs nine products and two comparisons over the plain law.
+        // under way: the previous sample and this one define the motion
         const double vUsed = v - state.previousOffset * law.inverseDt;
         state.previousOffset = 0.0;
-        const bool attractive = state.phase == CollisionPhase::attractive;
-        if ((attractive || state.phase == CollisionPhase::touching) &&
-            law.endX * x + law.endV * vUsed > law.endMargin * x) {
-            r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed;
-            const double mean = law.frictionX * x + law.frictionV * vUsed;  // of the force over the step
-            if (attractive) r.friction = -mean;
-            else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed >= 0.0) r.friction = mean;
-            else r.friction = frictionOver(law, state, {x, law.uX * x + law.uV * vUsed}, -0.5 * dt, 0.5 * dt);
-            return r;
-        }
         now = {x, law.uX * x + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
@@ -269,6 +264,32 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     r.friction = frictionOver(law, state, now, from, tau);
     state.phase = CollisionPhase::ended;
     return r;
+}
+
+}  // namespace detail
+
+// One step of a contact under `exactCollision`: x the overlap at this step,
+// v the overlap rate at the half step before (positive while approaching).
+inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v)
+{
+    // A contact under way that goes on past this step: the previous sample
+    // and this one define the motion. It costs nine products and two
+    // comparisons over the plain law.
+    const bool attractive = state.phase == CollisionPhase::attractive;
+    if (attractive || state.phase == CollisionPhase::touching) {
+        const double vUsed = v - state.previousOffset * law.inverseDt;
+        if (law.endX * x + law.endV * vUsed > law.endMargin * x) {
+            state.previousOffset = 0.0;
+            CollisionStep r;
+            r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed;
+            const double mean = law.frictionX * x + law.frictionV * vUsed;  // of the force over the step
+            if (attractive) r.friction = -mean;
+            else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed >= 0.0) r.friction = mean;
+            else r.friction = frictionOver(law, state, {x, law.uX * x + law.uV * vUsed}, -0.5 * law.dt, 0.5 * law.dt);
+            return r;
+        }
+    }
+    return detail::exactCollisionEnds(law, state, x, v);
 }
 
 // What one continuous collision does, from first touch with unit approach
@@ -336,20 +357,18 @@ inline V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V&
 inline Vec3 pourninExactTangentialForce(TangentialState& s, const Vec3& n, const Vec3& vt, double mt,
                                         const StepLaw& law, const CollisionStep& normal, double limit, bool advance)
 {
-    TangentialState t = s;
-    if (t.normal.squaredNorm() > 0.0) t.xi = rotateWithNormal(t.xi, t.normal, n);
-    t.xi += vt * law.dt;
-    t.xi -= t.xi.dot(n) * n;
-    t.normal = n;
-    Vec3 f = mt * exactTangentialStep(law, normal, t.xi, vt);
+    Vec3 xi = s.normal.squaredNorm() > 0.0 ? rotateWithNormal(s.xi, s.normal, n) : s.xi;
+    xi += vt * law.dt;
+    xi -= xi.dot(n) * n;
+    Vec3 f = mt * exactTangentialStep(law, normal, xi, vt);
     const double fmag = f.norm();
     if (fmag > limit) {
         f *= (fmag > 0.0 ? limit / fmag : 0.0);
         // the spring that gives the capped force (scalar reciprocals: one
         // division each instead of one per component)
-        t.xi = -(f * (1.0 / mt) + law.cStep * vt) * (1.0 / law.kStep);
+        xi = -(f * (1.0 / mt) + law.cStep * vt) * (1.0 / law.kStep);
     }
-    if (advance) s = t;
+    if (advance) s.xi = xi, s.normal = n;
     return f;
 }
 
