@@ -69,13 +69,32 @@ void writeRow(std::ostream& out, const std::vector<std::string>& cells)
     out << "\n";
 }
 
-std::string number(double x)
+std::string number(double x, int digits = 10)
 {
     if (std::isnan(x)) return "nan";
     std::ostringstream s;
-    s.precision(10);
+    s.precision(digits);
     s << x;
     return s.str();
+}
+
+// The cells of one CSV line (no quoting: every file read here is written by this tool or LIGGGHTS).
+std::vector<std::string> cells(const std::string& line)
+{
+    std::vector<std::string> c;
+    std::string cell;
+    for (std::stringstream ss(line); std::getline(ss, cell, ',');) c.push_back(cell);
+    return c;
+}
+
+double parseNumber(const std::string& cell, const std::string& file)
+{
+    if (cell == "nan" || cell == "-nan" || cell.empty()) return NAN;
+    try {
+        return std::stod(cell);
+    } catch (const std::exception&) {
+        throw std::runtime_error(file + ": '" + cell + "' is not a number");
+    }
 }
 
 // One chart panel per metric of the table: column `x` of `csv` against the
@@ -127,17 +146,14 @@ std::vector<std::string> cacheColumns()
     return c;
 }
 
-double parseNumber(const std::string& cell, const std::string& file);
-
 Cache readCache(const std::string& file)
 {
     Cache cache;
     std::ifstream in(file);
     if (!in) return cache;  // none yet
-    std::string line, cell;
+    std::string line;
     std::getline(in, line);
-    std::vector<std::string> names;
-    for (std::stringstream ss(line); std::getline(ss, cell, ',');) names.push_back(cell);
+    const std::vector<std::string> names = cells(line);
     if (names != cacheColumns())
         throw std::runtime_error("metrics cache " + file + " has other columns than this drum_metrics' metric table (" +
                                  line + "); without it the snapshots still on disk are measured afresh, and "
@@ -145,7 +161,7 @@ Cache readCache(const std::string& file)
     for (int n = 2; std::getline(in, line); ++n) {
         if (line.empty()) continue;
         std::vector<double> v;
-        for (std::stringstream ss(line); std::getline(ss, cell, ',');) v.push_back(parseNumber(cell, file));
+        for (const std::string& cell : cells(line)) v.push_back(parseNumber(cell, file));
         if (v.size() != names.size())
             throw std::runtime_error("metrics cache " + file + ", line " + std::to_string(n) + ": " +
                                      std::to_string(v.size()) + " cells, expected " + std::to_string(names.size()));
@@ -157,18 +173,10 @@ Cache readCache(const std::string& file)
     return cache;
 }
 
-// All the digits of a double (the cache's values then equal freshly measured ones exactly).
-std::string exact(double x)
-{
-    if (std::isnan(x)) return "nan";
-    std::ostringstream s;
-    s.precision(std::numeric_limits<double>::max_digits10);
-    s << x;
-    return s.str();
-}
-
 void writeCache(const std::string& file, const Cache& cache)
 {
+    // all the digits: the cache's values equal freshly measured ones exactly
+    const auto exact = [](double x) { return number(x, std::numeric_limits<double>::max_digits10); };
     const std::string tmp = file + ".tmp";  // whole or not at all: a run may be interrupted here
     {
         std::ofstream out(tmp);
@@ -321,32 +329,20 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
     return 0;
 }
 
-double parseNumber(const std::string& cell, const std::string& file)
-{
-    if (cell == "nan" || cell == "-nan" || cell.empty()) return NAN;
-    try {
-        return std::stod(cell);
-    } catch (const std::exception&) {
-        throw std::runtime_error(file + ": '" + cell + "' is not a number");
-    }
-}
-
 // The rows of an average file as {column name: value}, by its header.
 std::vector<std::map<std::string, double>> readAverages(const std::string& file)
 {
     std::ifstream in(file);
     if (!in) throw std::runtime_error("cannot read " + file);
-    std::string line, cell;
-    std::vector<std::string> names;
+    std::string line;
     std::getline(in, line);
-    for (std::stringstream ss(line); std::getline(ss, cell, ',');) names.push_back(cell);
+    const std::vector<std::string> names = cells(line);
     std::vector<std::map<std::string, double>> rows;
     while (std::getline(in, line)) {
         if (line.empty()) continue;
         std::map<std::string, double> row;
-        size_t i = 0;
-        for (std::stringstream ss(line); std::getline(ss, cell, ','); ++i)
-            if (i < names.size()) row[names[i]] = parseNumber(cell, file);
+        const std::vector<std::string> c = cells(line);
+        for (size_t i = 0; i < c.size() && i < names.size(); ++i) row[names[i]] = parseNumber(c[i], file);
         if (!row.count("rpm")) throw std::runtime_error(file + " has no column 'rpm'");
         rows.push_back(row);
     }
