@@ -26,7 +26,6 @@ progress, committed with --commit. A rerun on a fresh clone, without post/, goes
 import gzip
 import hashlib
 import math
-import os
 import shlex
 import shutil
 import subprocess
@@ -110,21 +109,17 @@ def verdict(row, simulated, cap):
 
 
 def pack(src, dst):
-    """gzip `src` to `dst` through a temporary file, with a fixed header time (the same state
-    packs to the same bytes, so git stores it once)."""
-    tmp = Path(f"{dst}.{os.getpid()}.tmp")
-    with open(src, "rb") as f, open(tmp, "wb") as raw, gzip.GzipFile(fileobj=raw, mode="wb", compresslevel=9,
-                                                                     mtime=0) as z:
+    """gzip `src` to `dst` (whole or not at all), with a fixed header time: the same state packs
+    to the same bytes, so git stores it once."""
+    with harness.whole(dst) as tmp, open(src, "rb") as f, open(tmp, "wb") as raw, \
+            gzip.GzipFile(fileobj=raw, mode="wb", compresslevel=9, mtime=0) as z:
         shutil.copyfileobj(f, z)
-    tmp.replace(dst)
 
 
 def unpack(src, dst):
-    """gunzip `src` to `dst` through a temporary file."""
-    tmp = Path(f"{dst}.{os.getpid()}.tmp")
-    with gzip.open(src, "rb") as f, open(tmp, "wb") as out:
+    """gunzip `src` to `dst` (whole or not at all)."""
+    with harness.whole(dst) as tmp, gzip.open(src, "rb") as f, open(tmp, "wb") as out:
         shutil.copyfileobj(f, out)
-    tmp.replace(dst)
 
 
 def trim_cache(src, dst, last_step):
@@ -132,9 +127,8 @@ def trim_cache(src, dst, last_step):
     `last_step` (those of a segment that was not recorded), written to `dst`."""
     lines = Path(src).read_text().splitlines(keepends=True)
     kept = lines[:1] + [line for line in lines[1:] if line.strip() and int(line.split(",", 1)[0]) <= last_step]
-    tmp = Path(f"{dst}.{os.getpid()}.tmp")
-    tmp.write_text("".join(kept))
-    tmp.replace(dst)
+    with harness.whole(dst) as tmp:
+        tmp.write_text("".join(kept))
 
 
 def commit(message, *paths, tries=10):
@@ -180,6 +174,35 @@ class Study:
 
     def prefix(self, rpm):
         return self.work / f"{rpm}rpm"
+
+    def forget(self, rpm):
+        """Removes the speed's files from post/: segments, snapshots, metrics cache, progress."""
+        for f in self.work.glob(f"{rpm}rpm[_.]*"):
+            f.unlink()
+
+    def start_of(self, previous, first, first_sha):
+        """Where a speed starts and that state's hash: the committed end state of the speed before
+        it (unpacked into post/), or for the first speed the --start-state (None: the grid)."""
+        if previous is None:
+            return first, first_sha
+        return self.state(previous), self.committed(previous)["state_sha256"]
+
+    def checkpoint_now(self, steps, first, first_sha):
+        """--checkpoint-now: each speed in progress whose record in post/ belongs to this study
+        (these settings, started from its predecessor's committed state)."""
+        previous, previous_done = None, True
+        for rpm, done in steps:
+            progress = self.work / f"{rpm}rpm_progress.json"
+            if not done and previous_done and progress.exists():
+                start, start_sha = self.start_of(previous, first, first_sha)
+                record = harness.read_json(progress)
+                if (record["state"] and record["settings"] == self.settings and record["start"] == str(start)
+                        and record.get("start_sha256", start_sha) == start_sha):
+                    try:
+                        self.checkpoint(rpm, {**record, "start_sha256": start_sha})
+                    except FileNotFoundError:  # a running study moved on to its next segment meanwhile
+                        self.checkpoint(rpm, {**harness.read_json(progress), "start_sha256": start_sha})
+            previous, previous_done = rpm, done
 
     def cache(self, rpm):
         """drum_metrics' per-snapshot metrics of the speed so far (all its segments)."""
@@ -227,8 +250,7 @@ class Study:
             return local
         if local and local["segments"] >= saved["segments"]:
             return local
-        for f in self.work.glob(f"{rpm}rpm[_.]*"):
-            f.unlink()
+        self.forget(rpm)
         state = self.work / f"{rpm}rpm_seg{saved['segments']}.restart"
         unpack(part / saved["state"], state)
         trim_cache(part / "metrics_cache.csv", self.cache(rpm), saved["last_step"])
@@ -277,8 +299,7 @@ class Study:
             done = None
         done = self.restore(rpm, start, start_sha, done)
         if not done:
-            for f in self.work.glob(f"{rpm}rpm[_.]*"):
-                f.unlink()
+            self.forget(rpm)
             done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha, "segments": 0,
                     "simulated_s": 0.0, "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
         done.setdefault("start_sha256", start_sha)
@@ -361,20 +382,7 @@ class Study:
         if a.dry_run:
             return 0
         if a.checkpoint_now:
-            previous = None
-            for rpm, done in steps:
-                progress = self.work / f"{rpm}rpm_progress.json"
-                before = self.committed(previous) if previous else None
-                start_sha = before["state_sha256"] if before else first_sha  # None: the grid
-                start = self.work / f"{previous}rpm_committed.restart" if previous else first
-                record = harness.read_json(progress) if not done and progress.exists() else None
-                if (record and record["state"] and record["settings"] == self.settings and (before or not previous)
-                        and record["start"] == str(start) and record.get("start_sha256", start_sha) == start_sha):
-                    try:
-                        self.checkpoint(rpm, {**record, "start_sha256": start_sha})
-                    except FileNotFoundError:  # a running study moved on to its next segment meanwhile
-                        self.checkpoint(rpm, {**harness.read_json(progress), "start_sha256": start_sha})
-                previous = rpm
+            self.checkpoint_now(steps, first, first_sha)
             return 0
         if a.commit:  # results an interrupted run wrote but did not commit
             paths = [self.docs.with_suffix(".csv")] + [self.docs / f"{r}rpm" for r, _ in steps]
@@ -386,8 +394,7 @@ class Study:
         previous = None
         for rpm, done in steps:
             if not done:
-                start = self.state(previous) if previous else first
-                start_sha = self.committed(previous)["state_sha256"] if previous else first_sha
+                start, start_sha = self.start_of(previous, first, first_sha)
                 began = time.monotonic()
                 outcome, record, restart = self.run_speed(rpm, start, start_sha)
                 self.finish(rpm, outcome, record, restart, start_sha)

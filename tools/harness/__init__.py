@@ -7,7 +7,8 @@
 - logs:      `Log(path)` - loop time, steps, atoms, per-rank bead counts
 - timing:    `interleaved(...)` - timed rounds, variants interleaved
              (A B C A B C ...), with `median`, `spread`, `median_ratio`
-- tables:    `read_csv` / `write_csv` (columns by name), `markdown(...)`
+- tables:    `read_csv` / `write_csv` (columns by name), `markdown(...)`,
+             `whole(path)` - write through a temporary file, replace at the end
 - charts:    `figure(...)` - matplotlib, headless
 - facts:     `materials()` - inputs/materials.in, the one file of Table 3.1
              and the scene constants
@@ -22,11 +23,11 @@ from .core import (REPO, RunFailed, drum, drum_metric_table, drum_series, last_s
                    tool, tool_path)
 from .logs import Log
 from .rounds import interleaved, median, median_ratio, spread
-from .tables import generated_note, markdown, read_csv, read_csv_text, write_csv, write_json, read_json
+from .tables import generated_note, markdown, read_csv, read_csv_text, whole, write_csv, write_json, read_json
 from .charts import figure, save
 
 __all__ = [
     "REPO", "RunFailed", "drum", "drum_metric_table", "drum_series", "last_snapshot", "liggghts", "machine", "materials", "mpirun", "options", "post", "render", "say", "snapshots", "tool",
     "tool_path", "Log", "interleaved", "median", "median_ratio", "spread", "generated_note", "markdown",
-    "read_csv", "read_csv_text", "write_csv", "write_json", "read_json", "figure", "save",
+    "read_csv", "read_csv_text", "whole", "write_csv", "write_json", "read_json", "figure", "save",
 ]

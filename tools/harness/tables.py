@@ -1,5 +1,6 @@
 """CSV with named columns, JSON summaries, Markdown tables."""
 
+import contextlib
 import csv
 import datetime
 import io
@@ -44,14 +45,25 @@ def _cell(v):
     return f"{v:.10g}" if isinstance(v, float) else v
 
 
+@contextlib.contextmanager
+def whole(path):
+    """A temporary file beside `path` to write; it replaces `path` when the block ends without an
+    error, so `path` is whole or as it was, whatever interrupts the writing."""
+    path = Path(path)
+    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    try:
+        yield tmp
+        tmp.replace(path)
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
 def write_json(path, data):
-    """Whole or not at all (through a temporary file): a study's progress record must survive
-    an interruption at any point."""
+    """Whole or not at all: a study's progress record must survive an interruption at any point."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    tmp.replace(path)
+    with whole(path) as tmp:
+        tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
     return path
 
 
