@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -93,10 +94,11 @@ TEST(DrumMetrics, ColumnNamesFollowTheContract)
     std::vector<std::string> columns, se;
     for (const drum::Metric& m : drum::metricTable()) columns.push_back(m.column()), se.push_back(m.seColumn());
     EXPECT_EQ(columns, (std::vector<std::string>{"Hh_m", "Hd_m", "Hc_m", "drum_force_N", "angle_deg", "layer_thickness_m",
-                                                 "surface_velocity_mps"}));
+                                                 "surface_velocity_mps", "bed_turn_1", "wall_slip_1", "wall_roll_1"}));
     EXPECT_EQ(se[0], "Hh_se_m");
     EXPECT_EQ(se[4], "angle_se_deg");
     EXPECT_EQ(se[6], "surface_velocity_se_mps");
+    EXPECT_EQ(se[7], "bed_turn_se_1");
 }
 
 // The flowing layer on a synthetic bed: the two-layer grid bed() below a
@@ -259,38 +261,198 @@ TEST(DrumCompare, MatchesBeadsByIdAndReportsLargestDifferences)
 
 // A bead file without the velocity array `v` (older dumps): readBed loads it,
 // and the flowing-layer metrics are nan, not an error.
-TEST(DrumMetrics, BedFileWithoutVelocitiesGivesNanFlowingLayer)
+namespace {
+
+// Writes a bed as LIGGGHTS' custom/vtk dump would: points, radius, the wall
+// force, and v / omega when the bed has them.
+void writeBed(const drum::Bed& b, const std::string& file)
 {
-    const drum::Bed b = bed(25.0, -0.06, 0.1, 2);
     auto points = vtkSmartPointer<vtkPoints>::New();
-    auto radius = vtkSmartPointer<vtkDoubleArray>::New(), force = vtkSmartPointer<vtkDoubleArray>::New();
-    radius->SetName("radius");
-    force->SetName("f_force_shell[1-3]");
-    force->SetNumberOfComponents(3);
+    const auto array = [](const char* name, int components) {
+        auto a = vtkSmartPointer<vtkDoubleArray>::New();
+        a->SetName(name);
+        a->SetNumberOfComponents(components);
+        return a;
+    };
+    auto radius = array("radius", 1), force = array("f_force_shell[1-3]", 3), v = array("v", 3),
+         spin = array("omega", 3);
     for (size_t i = 0; i < b.position.size(); ++i) {
         points->InsertNextPoint(b.position[i].data());
         radius->InsertNextValue(b.radius[i]);
         force->InsertNextTuple(b.wallForce[i].data());
+        if (!b.velocity.empty()) v->InsertNextTuple(b.velocity[i].data());
+        if (!b.spin.empty()) spin->InsertNextTuple(b.spin[i].data());
     }
     auto poly = vtkSmartPointer<vtkPolyData>::New();
     poly->SetPoints(points);
     poly->GetPointData()->AddArray(radius);
     poly->GetPointData()->AddArray(force);
-    const std::string file = (std::filesystem::temp_directory_path() / "drum_metrics_no_v.vtp").string();
+    if (!b.velocity.empty()) poly->GetPointData()->AddArray(v);
+    if (!b.spin.empty()) poly->GetPointData()->AddArray(spin);
     auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
     writer->SetFileName(file.c_str());
     writer->SetInputData(poly);
     ASSERT_EQ(writer->Write(), 1);
+}
+
+}  // namespace
+
+TEST(DrumMetrics, BedFileWithoutVelocitiesGivesNanFlowingLayer)
+{
+    const drum::Bed b = bed(25.0, -0.06, 0.1, 2);
+    const std::string file = (std::filesystem::temp_directory_path() / "drum_metrics_no_v.vtp").string();
+    writeBed(b, file);
     const drum::Bed read = drum::readBed(file, 0.5);
     EXPECT_EQ(read.position.size(), b.position.size());
     EXPECT_TRUE(read.velocity.empty());
+    EXPECT_TRUE(read.spin.empty());
     const drum::BedMetrics m = drum::measureBed(read, 1.0);
     // vtkPoints stores single precision
     EXPECT_NEAR(m["Hh"], drum::measureBed(b, 1.0)["Hh"], 1e-7);
     EXPECT_NEAR(m["drum_force"], 0.1, 1e-7);
     EXPECT_TRUE(std::isnan(m["layer_thickness"]));
     EXPECT_TRUE(std::isnan(m["surface_velocity"]));
+    EXPECT_TRUE(std::isnan(m["bed_turn"]));
+    EXPECT_TRUE(std::isnan(m["wall_slip"]));
+    EXPECT_TRUE(std::isnan(m["wall_roll"]));
     std::filesystem::remove(file);
+}
+
+namespace {
+
+// The three ways a drum can move a bed, as velocities and spins of the grid
+// bed (answers by construction):
+//  - carried: the whole bed turns with the drum as a solid body (v = w x x,
+//    spin w), except a flowing layer near the free surface that runs
+//    downhill (outside the sector bed_turn reads; touching beads excepted);
+//  - bearing: the bed stands still on its touching beads, which roll without
+//    slipping on the drum (their contact point moves with the drum's surface,
+//    their top stands still: centre at half the surface speed);
+//  - sliding: the bed turns at `turn` of the drum's rate as a solid body and
+//    slides on the drum.
+enum class Motion { carried, bearing, sliding };
+drum::Bed moving(Motion motion, double omega, double turn = 0.6)
+{
+    drum::Bed b = bed(20.0, -0.06);
+    for (size_t i = 0; i < b.position.size(); ++i) {
+        const Eigen::Vector3d& x = b.position[i];
+        const double rho = std::hypot(x.y(), x.z()), r = b.radius[i];
+        const Eigen::Vector3d etheta(0.0, -x.z() / rho, x.y() / rho);
+        Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+        if (motion == Motion::carried) {
+            v = omega * rho * etheta, w.x() = omega;
+            if (x.z() > -0.09 && b.wallForce[i].squaredNorm() == 0.0)
+                v = Eigen::Vector3d(0.0, -std::copysign(0.5, omega), 0.0);  // downhill
+        } else if (motion == Motion::sliding) {
+            v = turn * omega * rho * etheta, w.x() = turn * omega;
+        } else if (b.wallForce[i].squaredNorm() > 0.0) {
+            v = 0.5 * omega * (rho + r) * etheta, w.x() = 0.5 * omega * (rho + r) / r;
+        }
+        b.velocity.push_back(v), b.spin.push_back(w);
+    }
+    return b;
+}
+
+// Mean r / (rho + r) over the touching beads: the roll of a solid body.
+double solidRoll(const drum::Bed& b)
+{
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < b.position.size(); ++i)
+        if (b.wallForce[i].squaredNorm() > 0.0)
+            sum += b.radius[i] / (std::hypot(b.position[i].y(), b.position[i].z()) + b.radius[i]), ++n;
+    return sum / n;
+}
+
+}  // namespace
+
+TEST(DrumMetrics, SlipMetricsTellCarriedBearingAndSlidingBedsApart)
+{
+    for (double omega : {2.2, -2.2}) {  // 21 rpm, both directions
+        const drum::Bed carried = moving(Motion::carried, omega), bearing = moving(Motion::bearing, omega),
+                        sliding = moving(Motion::sliding, omega, 0.6);
+        const drum::BedMetrics c = drum::measureBed(carried, omega), b = drum::measureBed(bearing, omega),
+                               s = drum::measureBed(sliding, omega);
+        EXPECT_NEAR(c["bed_turn"], 1.0, 1e-12) << omega;
+        EXPECT_NEAR(c["wall_slip"], 0.0, 1e-12) << omega;
+        EXPECT_NEAR(c["wall_roll"], solidRoll(carried), 1e-12) << omega;
+        EXPECT_NEAR(b["bed_turn"], 0.0, 1e-12) << omega;
+        EXPECT_NEAR(b["wall_slip"], 0.0, 1e-12) << omega;
+        EXPECT_NEAR(b["wall_roll"], 0.5, 1e-12) << omega;
+        EXPECT_NEAR(s["bed_turn"], 0.6, 1e-12) << omega;
+        EXPECT_NEAR(s["wall_slip"], 0.4, 1e-12) << omega;
+        EXPECT_NEAR(s["wall_roll"], 0.6 * solidRoll(sliding), 1e-12) << omega;
+        // the drum turning the other way, read with the wrong sign
+        EXPECT_NEAR(drum::measureBed(carried, -omega)["bed_turn"], -1.0, 1e-12) << omega;
+    }
+    // without spins, nothing about the wall; the bed's turn needs velocities only
+    drum::Bed noSpin = moving(Motion::carried, 2.2);
+    noSpin.spin.clear();
+    const drum::BedMetrics m = drum::measureBed(noSpin, 2.2);
+    EXPECT_NEAR(m["bed_turn"], 1.0, 1e-12);
+    EXPECT_TRUE(std::isnan(m["wall_slip"]));
+    EXPECT_TRUE(std::isnan(m["wall_roll"]));
+}
+
+// A metrics cache written before bed_turn, wall_slip and wall_roll existed (its
+// columns a prefix of today's) is read: its rows are measured afresh where
+// the snapshot is on disk, and keep their values with nan for the new
+// metrics where it is gone. A cache with other columns is refused.
+TEST(DrumMetrics, OlderMetricsCacheIsUpgraded)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "drum_metrics_cache_upgrade";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const double omega = 21 * 2 * M_PI / 60;
+    writeBed(moving(Motion::sliding, omega, 0.3), (dir / "b_1000.vtp").string());
+    writeBed(moving(Motion::sliding, omega, 0.7), (dir / "b_2000.vtp").string());
+    const std::string cache = (dir / "cache.csv").string(), prefix = (dir / "b").string();
+    const std::string run = std::string(DRUM_METRICS) + " series --prefix " + prefix + " --out " + prefix +
+                            " --dt 1e-4 --rpm 21 --cache " + cache + " > " + (dir / "out.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(run.c_str()), 0);
+    // today's cache, cut to the old columns (the new ones are the last three)
+    std::ifstream in(cache);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+        rows.push_back(cells);
+    }
+    in.close();
+    ASSERT_EQ(rows.size(), 3u);
+    ASSERT_EQ(rows[0].back(), "wall_roll_1");
+    const auto writeCut = [&](const std::string& file, const std::string& firstColumn) {
+        std::ofstream out(file);
+        for (size_t k = 0; k < rows.size(); ++k)
+            for (size_t j = 0; j + 3 < rows[k].size(); ++j)
+                out << (k == 0 && j == 0 ? firstColumn : rows[k][j]) << (j + 4 < rows[k].size() ? "," : "\n");
+    };
+    writeCut(cache, "step");
+    const std::string oldHc = rows[1][4 + 2];  // step 1000's Hc_m
+    fs::remove(dir / "b_1000.vtp");            // gone: its old values stay
+    ASSERT_EQ(std::system(run.c_str()), 0);
+    std::ifstream again(cache);
+    std::string header, r1000, r2000;
+    std::getline(again, header), std::getline(again, r1000), std::getline(again, r2000);
+    EXPECT_EQ(header.substr(header.rfind(',') + 1), "wall_roll_1");
+    EXPECT_EQ(r1000.substr(0, r1000.find(',')), "1000");
+    EXPECT_NE(r1000.find("," + oldHc + ","), std::string::npos);
+    EXPECT_EQ(r1000.substr(r1000.size() - 12), ",nan,nan,nan");
+    // step 2000 measured afresh: the bed turns at 0.7 of the drum
+    std::vector<std::string> cells;
+    std::stringstream ss(r2000);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    ASSERT_EQ(cells.size(), rows[0].size());
+    EXPECT_NEAR(std::stod(cells[cells.size() - 3]), 0.7, 1e-6);  // single-precision points
+    // a cache with another first column is not a prefix: refused, naming the file
+    writeCut(cache, "stepp");
+    EXPECT_NE(std::system(run.c_str()), 0);
+    std::ifstream log(dir / "out.txt");
+    const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("has other columns"), std::string::npos) << text;
+    fs::remove_all(dir);
 }
 
 namespace {

@@ -25,6 +25,7 @@
 #include <limits>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "gnuplot.h"
@@ -146,15 +147,20 @@ std::vector<std::string> cacheColumns()
     return c;
 }
 
-Cache readCache(const std::string& file)
+// A cache written before metrics were added to the end of the table is read
+// with nan for those; its rows are listed in `older`, to be measured afresh
+// where their snapshot is still on disk.
+Cache readCache(const std::string& file, std::set<long>& older)
 {
     Cache cache;
     std::ifstream in(file);
     if (!in) return cache;  // none yet
     std::string line;
     std::getline(in, line);
-    const std::vector<std::string> names = cells(line);
-    if (names != cacheColumns())
+    const std::vector<std::string> names = cells(line), columns = cacheColumns();
+    const bool prefix = names.size() > 4 && names.size() <= columns.size() &&
+                        std::equal(names.begin(), names.end(), columns.begin());
+    if (!prefix)
         throw std::runtime_error("metrics cache " + file + " has other columns than this drum_metrics' metric table (" +
                                  line + "); without it the snapshots still on disk are measured afresh, and "
                                  "the series of those that are gone is lost");
@@ -168,7 +174,9 @@ Cache readCache(const std::string& file)
         drum::BedMetrics m;
         m.time = v[1], m.beads = int(v[2]), m.wallContacts = int(v[3]);
         m.values.assign(v.begin() + 4, v.end());
+        m.values.resize(table().size(), NAN);
         cache[std::lround(v[0])] = m;
+        if (names.size() < columns.size()) older.insert(std::lround(v[0]));
     }
     return cache;
 }
@@ -198,13 +206,14 @@ void writeCache(const std::string& file, const Cache& cache)
 std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, double rpm, double skip, double until,
                                          const std::string& cacheFile = "")
 {
-    const double omegaSign = rpm >= 0 ? 1.0 : -1.0;
-    Cache cache = cacheFile.empty() ? Cache{} : readCache(cacheFile);
+    const double omega = rpm * 2.0 * M_PI / 60.0;
+    std::set<long> older;
+    Cache cache = cacheFile.empty() ? Cache{} : readCache(cacheFile, older);
     for (const auto& [step, m] : cache)
         if (std::fabs(m.time - step * dt) > 1e-9 * std::fabs(step * dt))
             throw std::runtime_error("metrics cache " + cacheFile + " has step " + std::to_string(step) + " at t = " +
                                      number(m.time) + " s: it was measured with another --dt than " + number(dt));
-    bool added = false;
+    bool added = !older.empty();  // rewritten with every column
     std::vector<std::pair<long, fs::path>> files;
     try {
         files = beadFiles(prefix);
@@ -212,8 +221,8 @@ std::vector<drum::BedMetrics> measureRun(const std::string& prefix, double dt, d
         if (cache.empty()) throw;  // the cache may hold every snapshot
     }
     for (const auto& [step, file] : files) {
-        if (cache.count(step)) continue;
-        cache[step] = drum::measureBed(drum::readBed(file.string(), step * dt), omegaSign);
+        if (cache.count(step) && !older.count(step)) continue;
+        cache[step] = drum::measureBed(drum::readBed(file.string(), step * dt), omega);
         added = true;
     }
     if (added && !cacheFile.empty()) writeCache(cacheFile, cache);

@@ -152,6 +152,76 @@ double layerThickness(const BedAnalysis& a)
     return NAN;
 }
 
+// Does the drum carry the bed, or does the bed slip on it? A bead at distance
+// rho from the axis turns about it at (e_theta . v) / rho, e_theta = (0, -z, y)
+// / rho (counter-clockwise). A touching bead's contact point (its outermost
+// point, at rho + r) moves along the drum at e_theta . v + spin_x r, where
+// the drum's surface moves at omega (rho + r). Three fractions of the drum's
+// own motion tell the cases apart: a bed carried as a solid body turns at 1
+// with no slip at the wall and no roll; a bed on a layer of beads rolling
+// like a ball bearing turns at well under 1 with no slip either (the wall
+// beads' spin carries the difference); a bed sliding on the drum turns below
+// 1 with slip at the wall.
+struct Ring {
+    double rho, etheta;  // distance from the axis, velocity component along e_theta
+};
+Ring ring(const Bed& b, size_t i, const Eigen::Vector3d& v)
+{
+    const Eigen::Vector3d& x = b.position[i];
+    const double rho = std::hypot(x.y(), x.z());
+    return {rho, (-x.z() * v.y() + x.y() * v.z()) / rho};
+}
+
+// The drum's radius as the touching beads give it: their largest rho + r.
+double wallRadius(const Bed& b)
+{
+    double R = NAN;
+    for (size_t i = 0; i < b.position.size(); ++i)
+        if (touching(b, i)) R = std::fmax(R, std::hypot(b.position[i].y(), b.position[i].z()) + b.radius[i]);
+    return R;
+}
+
+// Bed turn: the mean angular velocity about the axis of the beads whose
+// centres lie 1.5 to 6 diameters inside the drum and within 30 degrees of its
+// lowest point (deep under the free surface at 40 % fill: the part of the
+// bed a carrying drum turns with it), over omega; nan without velocities,
+// touching beads or such beads.
+double bedTurn(const BedAnalysis& a)
+{
+    const Bed& b = a.bed;
+    const double R = wallRadius(b), d = a.diameter;
+    if (b.velocity.size() != b.position.size() || std::isnan(R) || a.omega == 0.0) return NAN;
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < b.position.size(); ++i) {
+        const Ring c = ring(b, i, b.velocity[i]);
+        const double depth = R - c.rho;
+        if (depth < 1.5 * d || depth > 6.0 * d || -b.position[i].z() < c.rho * std::cos(M_PI / 6.0)) continue;
+        sum += c.etheta / c.rho, ++n;
+    }
+    return n ? sum / n / a.omega : NAN;
+}
+
+// Over the touching beads: the mean speed of the drum's surface past their
+// contact points (slip) and the mean contribution of their spin to the
+// contact point's motion (roll), each over the drum surface's speed there;
+// nan without velocities and spins, or touching beads.
+double wallFraction(const BedAnalysis& a, bool slip)
+{
+    const Bed& b = a.bed;
+    if (b.velocity.size() != b.position.size() || b.spin.size() != b.position.size() || a.omega == 0.0) return NAN;
+    double sum = 0.0;
+    for (size_t i = 0; i < b.position.size(); ++i) {
+        if (!touching(b, i)) continue;
+        const Ring c = ring(b, i, b.velocity[i]);
+        const double drum = a.omega * (c.rho + b.radius[i]), roll = b.spin[i].x() * b.radius[i];
+        sum += (slip ? drum - c.etheta - roll : roll) / drum;
+    }
+    return a.wallContacts ? sum / a.wallContacts : NAN;
+}
+double wallSlip(const BedAnalysis& a) { return wallFraction(a, true); }
+double wallRoll(const BedAnalysis& a) { return wallFraction(a, false); }
+
 std::string unitTag(std::string unit)
 {
     std::replace(unit.begin(), unit.end(), '/', 'p');
@@ -182,13 +252,24 @@ const std::vector<Metric>& metricTable()
         {"surface_velocity", "m/s", "surface velocity",
          "mean downhill velocity along the free surface of the beads within one diameter of it at mid-chord", false,
          surfaceVelocity},
+        {"bed_turn", "1", "bed turn (1: carried by the drum)",
+         "angular velocity about the axis of the beads 1.5-6 diameters inside the drum within 30 degrees of its "
+         "lowest point, over the drum's",
+         false, bedTurn},
+        {"wall_slip", "1", "slip at the drum (0: none)",
+         "mean speed of the drum's surface past the contact points of the touching beads, over its own speed", false,
+         wallSlip},
+        {"wall_roll", "1", "roll at the drum",
+         "mean speed of the touching beads' contact points from their spin (spin_x r), over the drum surface's speed",
+         false, wallRoll},
     };
     return table;
 }
 
-BedAnalysis analyseBed(const Bed& bed, double omegaSign)
+BedAnalysis analyseBed(const Bed& bed, double omega)
 {
-    BedAnalysis a{bed, omegaSign, 0.0, 0, FreeSurface{}, {}};
+    const double omegaSign = omega >= 0.0 ? 1.0 : -1.0;
+    BedAnalysis a{bed, omega, omegaSign, 0.0, 0, FreeSurface{}, {}};
     if (bed.position.empty()) return a;
     a.diameter = 2.0 * bed.radius.front();
     for (size_t i = 0; i < bed.position.size(); ++i) a.wallContacts += touching(bed, i);
@@ -205,9 +286,9 @@ double BedMetrics::operator[](const std::string& key) const
     throw std::invalid_argument("no drum metric '" + key + "'");
 }
 
-BedMetrics measureBed(const Bed& bed, double omegaSign)
+BedMetrics measureBed(const Bed& bed, double omega)
 {
-    const BedAnalysis a = analyseBed(bed, omegaSign);
+    const BedAnalysis a = analyseBed(bed, omega);
     BedMetrics m;
     m.time = bed.time;
     m.beads = static_cast<int>(bed.position.size());
@@ -241,6 +322,8 @@ Bed readBed(const std::string& file, double time)
     vtkDataArray* id = pd->GetArray("id");
     vtkDataArray* v = pd->GetArray("v");
     if (v && v->GetNumberOfComponents() != 3) v = nullptr;
+    vtkDataArray* spin = pd->GetArray("omega");
+    if (spin && spin->GetNumberOfComponents() != 3) spin = nullptr;
 
     Bed s;
     s.time = time;
@@ -248,6 +331,7 @@ Bed readBed(const std::string& file, double time)
     s.position.resize(n), s.radius.resize(n), s.wallForce.resize(n);
     if (id) s.id.resize(n);
     if (v) s.velocity.resize(n);
+    if (spin) s.spin.resize(n);
     for (vtkIdType i = 0; i < n; ++i) {
         double p[3], f[3];
         data->GetPoint(i, p);
@@ -260,6 +344,11 @@ Bed readBed(const std::string& file, double time)
             double w[3];
             v->GetTuple(i, w);
             s.velocity[i] = Eigen::Vector3d(w[0], w[1], w[2]);
+        }
+        if (spin) {
+            double w[3];
+            spin->GetTuple(i, w);
+            s.spin[i] = Eigen::Vector3d(w[0], w[1], w[2]);
         }
     }
     return s;

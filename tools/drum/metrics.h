@@ -24,6 +24,7 @@ struct Bed {
     std::vector<Eigen::Vector3d> wallForce;
     std::vector<long> id;                     // when the file has them, else empty
     std::vector<Eigen::Vector3d> velocity;    // likewise (VTP array `v`)
+    std::vector<Eigen::Vector3d> spin;        // likewise (VTP array `omega`) [rad/s]
 };
 
 // The free surface: a straight line z = intercept + slope y fitted, over the
@@ -47,13 +48,14 @@ struct DepthBin {
 // What the metric functions read from one bed, each part computed once.
 struct BedAnalysis {
     const Bed& bed;
-    double omegaSign = 1.0;  // +1: the drum turns counter-clockwise about +x (y towards z)
+    double omega = 1.0;      // the drum's angular velocity about +x [rad/s] (> 0: counter-clockwise, y towards z)
+    double omegaSign = 1.0;  // its sign
     double diameter = 0.0;   // bead diameter d (from the first bead) [m]
     int wallContacts = 0;    // beads touching the drum
     FreeSurface surface;
     std::vector<DepthBin> profile;  // empty without velocities or a free surface
 };
-BedAnalysis analyseBed(const Bed& bed, double omegaSign);
+BedAnalysis analyseBed(const Bed& bed, double omega);
 
 // One row of the metric table. Column names: key + "_" + unit tag, standard
 // error key + "_se_" + unit tag, where the tag is the unit with '/' written
@@ -76,10 +78,11 @@ struct BedMetrics {
     std::vector<double> values;
     double operator[](const std::string& key) const;  // throws for a key not in the table
 };
-BedMetrics measureBed(const Bed& bed, double omegaSign);
+// omega: the drum's angular velocity about +x [rad/s] (its sign: the direction).
+BedMetrics measureBed(const Bed& bed, double omega);
 
 // Reads a LIGGGHTS custom/vtk bead file (.vtp or legacy .vtk) with arrays
-// radius and f_force_shell[1-3] (and id, v when present).
+// radius and f_force_shell[1-3] (and id, v, omega when present).
 Bed readBed(const std::string& file, double time);
 
 // Largest position and velocity differences between the beads of two
