@@ -134,8 +134,9 @@ def drum_series(prefix, dt, rpm, out=None, skip=None, until=None, average=None, 
 def drum_metric_table():
     """The drum metrics as `drum_metrics metrics` lists them (key, column, se_column, unit, label,
     description): scripts show metrics from this table instead of listing them again."""
-    from .tables import read_csv_text
-    return read_csv_text(tool("drum_metrics", "metrics"))
+    import csv
+    import io
+    return list(csv.DictReader(io.StringIO(tool("drum_metrics", "metrics"))))  # text: the unit "1" stays "1"
 
 
 def materials(path=None):
