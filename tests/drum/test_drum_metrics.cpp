@@ -17,6 +17,8 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <Eigen/Geometry>
+
 #include "metrics.h"
 
 namespace {
@@ -474,10 +476,14 @@ TEST(DrumMesh, RegeneratesTheCommittedMeshes)
 {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "drum_mesh_test";
     std::filesystem::create_directories(dir);
-    for (const auto& [length, segments] : {std::pair{6, 90}, {6, 180}, {6, 360}, {12, 180}, {24, 180}}) {
-        const std::string name = "drum_L" + std::to_string(length) + "_N" + std::to_string(segments) + ".stl";
-        const std::string command = std::string(DRUM_MESH) + " --length " + std::to_string(length * 1e-3) +
-                                    " --segments " + std::to_string(segments) + " -o " + (dir / name).string();
+    const std::vector<std::pair<int, std::string>> meshes = {
+        {6, "N90"}, {6, "N180"}, {6, "N360"}, {12, "N180"}, {24, "N180"}, {6, "G471"}, {24, "G471"}};
+    for (const auto& [length, shape] : meshes) {
+        const std::string name = "drum_L" + std::to_string(length) + "_" + shape + ".stl";
+        const std::string options = shape[0] == 'N' ? " --segments " + shape.substr(1)
+                                                    : " --ridges " + shape.substr(1) + " --depth 0.00075";
+        const std::string command = std::string(DRUM_MESH) + " --length " + std::to_string(length * 1e-3) + options +
+                                    " -o " + (dir / name).string();
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
         const std::vector<std::string> made = words(dir / name);
         const std::vector<std::string> committed = words(std::filesystem::path(SOURCE_DIR) / "inputs/meshes" / name);
@@ -494,6 +500,61 @@ TEST(DrumMesh, RegeneratesTheCommittedMeshes)
         }
     }
     std::filesystem::remove_all(dir);
+}
+
+// The grooved drum's geometry from its definition: 2 N strips (two
+// triangles each) alternating between the cylinder (ridge tips, radius R, at
+// angles 2 pi k / N) and the groove bottoms (R + depth, half-way between);
+// each normal a unit vector across its triangle, pointing to the beads' side
+// (towards the axis) and agreeing with the vertex order (right-hand rule),
+// so LIGGGHTS sees the grooves from inside.
+TEST(DrumMesh, GroovedDrumHasItsRidgesOnTheCylinderAndItsGroovesBeyond)
+{
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "drum_mesh_grooved.stl";
+    const int ridges = 12;
+    const double R = 0.225, depth = 0.01, length = 0.006;
+    const std::string command = std::string(DRUM_MESH) + " --length 0.006 --ridges 12 --depth 0.01 -o " + file.string();
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(file);
+    std::vector<Eigen::Vector3d> normals, vertices;
+    for (std::string w; in >> w;) {
+        double x, y, z;
+        if (w == "normal" && in >> x >> y >> z) normals.emplace_back(x, y, z);
+        if (w == "vertex" && in >> x >> y >> z) vertices.emplace_back(x, y, z);
+    }
+    ASSERT_EQ(normals.size(), 4u * ridges);
+    ASSERT_EQ(vertices.size(), 3 * normals.size());
+    std::vector<int> tips(ridges, 0), grooves(ridges, 0);
+    for (const Eigen::Vector3d& v : vertices) {
+        EXPECT_TRUE(std::fabs(v.x()) < 1e-12 || std::fabs(v.x() - length) < 1e-12) << v.transpose();
+        const double rho = std::hypot(v.y(), v.z());
+        double a = std::atan2(v.z(), v.y());
+        if (a < -1e-9) a += 2 * M_PI;
+        const double k = a * ridges / (2 * M_PI);  // tips at whole k, grooves at k + 1/2
+        if (std::fabs(rho - R) < 1e-9) {
+            ASSERT_NEAR(k, std::round(k), 1e-9) << v.transpose();
+            ++tips[static_cast<int>(std::lround(k)) % ridges];
+        } else {
+            ASSERT_NEAR(rho, R + depth, 1e-9) << v.transpose();
+            ASSERT_NEAR(k - std::floor(k), 0.5, 1e-9) << v.transpose();
+            ++grooves[static_cast<int>(std::floor(k))];
+        }
+    }
+    for (int k = 0; k < ridges; ++k) {
+        EXPECT_EQ(tips[k], 6) << k;  // 2 strips x 3 of their 6 vertices
+        EXPECT_EQ(grooves[k], 6) << k;
+    }
+    for (size_t t = 0; t < normals.size(); ++t) {
+        const Eigen::Vector3d &n = normals[t], &a = vertices[3 * t], &b = vertices[3 * t + 1], &c = vertices[3 * t + 2];
+        EXPECT_NEAR(n.norm(), 1.0, 1e-9);
+        const Eigen::Vector3d right = (b - a).cross(c - a);
+        EXPECT_NEAR(right.normalized().dot(n), 1.0, 1e-9) << t;
+        const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+        EXPECT_LT(n.dot(Eigen::Vector3d(0.0, centroid.y(), centroid.z())), 0.0) << t;
+    }
+    // the options go together
+    EXPECT_NE(std::system((std::string(DRUM_MESH) + " --ridges 12 -o " + file.string() + " 2>/dev/null").c_str()), 0);
+    std::filesystem::remove(file);
 }
 
 namespace {

@@ -1,10 +1,15 @@
 // drum_mesh: writes the drum shell as an ASCII STL triangle mesh: a
-// cylinder about the x axis, normals pointing inwards (towards the beads).
+// cylinder about the x axis, normals pointing inwards (towards the beads);
+// or, with --ridges, a grooved drum: axial V-grooves cut outwards into the
+// cylinder (ridge tips on it, groove bottoms --depth beyond), so a bed that
+// fits the smooth drum fits the grooved one too.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "materials.h"
 
@@ -12,7 +17,8 @@ int main(int argc, char** argv)
 {
     CLI::App app{"Write a drum shell (cylinder about x) as ASCII STL"};
     double diameter = 0.0, length = 0.024, x0 = 0.0;
-    int segments = 360;
+    int segments = 360, ridges = 0;
+    double depth = 0.0;
     std::string out = "drum.stl", materials = "inputs/materials.in";
     app.add_option("--diameter", diameter, "inner diameter [m] (default: 2 drum_R of --materials)")
         ->check(CLI::PositiveNumber);
@@ -20,6 +26,10 @@ int main(int argc, char** argv)
     app.add_option("--length", length, "axial length [m]")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--x0", x0, "axial start [m]")->capture_default_str();
     app.add_option("--segments", segments, "facets around the circumference")->check(CLI::Range(3, 100000))->capture_default_str();
+    app.add_option("--ridges", ridges,
+                   "grooved drum: this many axial ridges around the circumference (instead of --segments facets)")
+        ->check(CLI::Range(3, 100000));
+    app.add_option("--depth", depth, "groove depth beyond the cylinder [m] (with --ridges)")->check(CLI::PositiveNumber);
     app.add_option("-o,--output", out, "output file")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     if (diameter <= 0.0) try {
@@ -31,18 +41,33 @@ int main(int argc, char** argv)
             return 2;
         }
 
+    if ((ridges > 0) != (depth > 0.0)) {
+        std::cerr << "drum_mesh: --ridges and --depth go together (a grooved drum needs both)\n";
+        return 2;
+    }
     const double r = 0.5 * diameter, pi = std::acos(-1.0);
+    // the profile around the axis: counter-clockwise (angle, radius) points
+    std::vector<std::pair<double, double>> profile;
+    if (ridges > 0)
+        for (int k = 0; k < 2 * ridges; ++k) profile.emplace_back(pi * k / ridges, k % 2 ? r + depth : r);
+    else
+        for (int k = 0; k < segments; ++k) profile.emplace_back(2 * pi * k / segments, r);
     std::ofstream f(out);
     f.precision(12);
     f << "solid drum\n";
-    auto vertex = [&](double x, double a) { f << "   vertex " << x << " " << r * std::cos(a) << " " << r * std::sin(a) << "\n"; };
-    for (int k = 0; k < segments; ++k) {
-        const double a0 = 2 * pi * k / segments, a1 = 2 * pi * (k + 1) / segments, am = 0.5 * (a0 + a1);
+    for (size_t k = 0; k < profile.size(); ++k) {
+        const auto [a0, r0] = profile[k];
+        const auto [next, r1] = profile[(k + 1) % profile.size()];
+        const double a1 = k + 1 == profile.size() ? 2 * pi : next;
+        const double y0 = r0 * std::cos(a0), z0 = r0 * std::sin(a0), y1 = r1 * std::cos(a1), z1 = r1 * std::sin(a1);
+        // the strip's normal: the chord turned a quarter counter-clockwise, towards the axis
+        const double len = std::hypot(y1 - y0, z1 - z0), ny = -(z1 - z0) / len, nz = (y1 - y0) / len;
+        auto vertex = [&](double x, double y, double z) { f << "   vertex " << x << " " << y << " " << z << "\n"; };
         for (int t = 0; t < 2; ++t) {
-            f << " facet normal 0 " << -std::cos(am) << " " << -std::sin(am) << "\n  outer loop\n";
+            f << " facet normal 0 " << ny << " " << nz << "\n  outer loop\n";
             // ordered so the right-hand normal points inwards
-            if (t == 0) vertex(x0, a0), vertex(x0 + length, a0), vertex(x0 + length, a1);
-            else vertex(x0, a0), vertex(x0 + length, a1), vertex(x0, a1);
+            if (t == 0) vertex(x0, y0, z0), vertex(x0 + length, y0, z0), vertex(x0 + length, y1, z1);
+            else vertex(x0, y0, z0), vertex(x0 + length, y1, z1), vertex(x0, y1, z1);
             f << "  endloop\n endfacet\n";
         }
     }
