@@ -1,7 +1,9 @@
 """The steady-state study driver's decisions (tools/drum/steady.py): which speeds are done,
 when a speed stops, targets. No LIGGGHTS runs (the end-to-end test runs a tiny drum)."""
 
+import gzip
 import sys
+import tempfile
 import unittest
 from pathlib import Path
 
@@ -62,6 +64,19 @@ class Options(unittest.TestCase):
 
     def test_revolution_is_the_batch(self):
         self.assertAlmostEqual(steady.revolution(21), 60 / 21)
+
+
+
+class Pack(unittest.TestCase):
+    def test_the_same_state_packs_to_the_same_bytes(self):
+        # through differently named temporary files, seconds apart: git must see one object
+        with tempfile.TemporaryDirectory() as d:
+            d = Path(d)
+            (d / "state").write_bytes(bytes(range(256)) * 1000)
+            steady.pack(d / "state", d / "a.gz")
+            steady.pack(d / "state", d / "sub_b.gz")
+            self.assertEqual((d / "a.gz").read_bytes(), (d / "sub_b.gz").read_bytes())
+            self.assertEqual(gzip.decompress((d / "a.gz").read_bytes()), (d / "state").read_bytes())
 
 
 if __name__ == "__main__":

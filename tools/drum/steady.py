@@ -109,10 +109,11 @@ def verdict(row, simulated, cap):
 
 
 def pack(src, dst):
-    """gzip `src` to `dst` (whole or not at all), with a fixed header time: the same state packs
-    to the same bytes, so git stores it once."""
+    """gzip `src` to `dst` (whole or not at all), with a fixed header time and no file name (the
+    temporary file's would differ each time): the same state packs to the same bytes, so git
+    stores it once."""
     with harness.whole(dst) as tmp, open(src, "rb") as f, open(tmp, "wb") as raw, \
-            gzip.GzipFile(fileobj=raw, mode="wb", compresslevel=9, mtime=0) as z:
+            gzip.GzipFile(filename="", fileobj=raw, mode="wb", compresslevel=9, mtime=0) as z:
         shutil.copyfileobj(f, z)
 
 
