@@ -173,6 +173,42 @@ TEST(DrumMetrics, FlowingLayerOfALinearProfile)
     }
 }
 
+// A curved free surface, as fast or steep flows have (e.g. the grooved drum
+// at 21 rpm, 33 deg: the bed's ends 8-14 mm above the fitted line, its middle
+// 5 mm below it at mid-chord): the grid bed below z = z0 + tan(theta) y +
+// k y^2, k = 2 /m. The line fitted over the central half lies about k L^2/3 =
+// 6.7 mm (L = 0.1 m, half of that half) above the surface in the middle, more
+// than the top bin's d, so depths measured from the line would leave the top
+// bin empty (surface velocity nan). Measured from the strip's top beads, the
+// top bin holds the beads within about d of the surface, each moving at
+// u0 (1 - H / zero), H its depth below the curved surface: the surface
+// velocity lies between u(1.5 d) and u(0).
+TEST(DrumMetrics, FlowingLayerUnderACurvedSurface)
+{
+    const double u0 = 0.5, z0 = -0.06, theta = 30.0, k = 2.0, zero = 0.015;
+    const double slope = std::tan(theta * M_PI / 180.0), c = std::cos(theta * M_PI / 180.0);
+    const Eigen::Vector3d downhill(0.0, -c, -std::sin(theta * M_PI / 180.0));
+    const int n = static_cast<int>(kR / kD) + 1;
+    drum::Bed b;
+    for (int layer = 0; layer < 2; ++layer)
+        for (int i = -n; i < n; ++i)
+            for (int j = -n; j < n; ++j) {
+                const double y = (i + 0.5) * kD, z = (j + 0.5) * kD, r = std::hypot(y, z);
+                const double surface = z0 + slope * y + k * y * y;
+                if (r > kR - kD / 2 || z > surface) continue;
+                b.position.emplace_back(layer * kD, y, z);
+                b.radius.push_back(kD / 2);
+                b.wallForce.push_back(r > kR - 1.5 * kD ? Eigen::Vector3d(0.0, -y / r, -z / r) : Eigen::Vector3d::Zero());
+                b.velocity.push_back(u0 * (1.0 - (surface - z) * c / zero) * downhill);
+            }
+    const drum::BedMetrics m = drum::measureBed(b, 1.0);
+    EXPECT_TRUE(std::isfinite(m["surface_velocity"]));
+    EXPECT_LE(m["surface_velocity"], u0);
+    EXPECT_GE(m["surface_velocity"], u0 * (1.0 - 1.5 * kD / zero));
+    // the zero of the profile, 15 mm under the surface, within the top bin's d either way
+    EXPECT_NEAR(m["layer_thickness"], zero, kD);
+}
+
 // "At mid-chord" matters: the same bed with a profile whose zero deepens along
 // the surface, zero(s) = 15 mm (1 + s / 50 mm), s the distance downhill from
 // the mid-chord point (the point of the plane above the middle of the bed's

@@ -81,11 +81,28 @@ std::vector<DepthBin> velocityProfile(const Bed& s, const FreeSurface& fs, doubl
     if (t.z() > 0.0 || (t.z() == 0.0 && omegaSign > 0.0)) t = -t;
     const Eigen::Vector3d n(0.0, fs.slope / norm, -1.0 / norm);
     const Eigen::Vector3d P(0.0, fs.midY, fs.intercept + fs.slope * fs.midY);
+    // A curved surface (fast or steep flows) can pass more than d below the
+    // fitted line at mid-chord, which leaves the top bin empty: depths are then
+    // measured from the strip's third-highest bead below the line (the rule
+    // that places the line in each surface bin) instead. Where the top bin has
+    // beads, nothing changes.
+    std::vector<double> strip;  // depths of the strip's beads not in flight
+    bool top = false;
+    for (const Eigen::Vector3d& x : s.position) {
+        Eigen::Vector3d r = x - P;
+        r.x() = 0.0;
+        const double h = r.dot(n);
+        if (std::fabs(r.dot(t)) > 2.0 * d || h < -d) continue;
+        strip.push_back(h), top = top || h < d;
+    }
+    if (strip.size() < 3) return profile;
+    std::nth_element(strip.begin(), strip.begin() + 2, strip.end());
+    const double origin = top ? 0.0 : strip[2];
     std::map<int, DepthBin> bins;
     for (size_t i = 0; i < s.position.size(); ++i) {
         Eigen::Vector3d r = s.position[i] - P;
         r.x() = 0.0;
-        const double h = r.dot(n);
+        const double h = r.dot(n) - origin;
         if (std::fabs(r.dot(t)) > 2.0 * d || h < -d) continue;
         const int k = static_cast<int>(std::floor(std::max(h, 0.0) / d));
         DepthBin& b = bins[k];
