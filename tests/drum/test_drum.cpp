@@ -303,7 +303,7 @@ TEST(DrumInput, UnknownChoiceIsNamed)
     const fs::path dir = freshDir("drum_choice");
     const Result r = shell(std::string(LIGGGHTS_LAUNCHER) + " -in inputs/drum.in -var wall spinning -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.05", dir);
     EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp | cylinder)\nERROR: Label wasn't found"),
+    EXPECT_NE(r.output.find("drum: wall spinning (surface | moving | ramp | cylinder | grooved)\nERROR: Label wasn't found"),
               std::string::npos) << r.output;
 }
 
