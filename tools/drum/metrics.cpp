@@ -274,7 +274,8 @@ const std::vector<Metric>& metricTable()
          "lowest point, over the drum's",
          false, bedTurn},
         {"wall_slip", "1", "slip at the drum (0: none)",
-         "mean speed of the drum's surface past the contact points of the touching beads, over its own speed", false,
+         "mean velocity of the drum's surface past the touching beads' contact points along its motion "
+         "(signed) over its speed", false,
          wallSlip},
         {"wall_roll", "1", "roll at the drum",
          "mean speed of the touching beads' contact points from their spin (spin_x r), over the drum surface's speed",
