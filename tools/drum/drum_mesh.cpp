@@ -55,6 +55,7 @@ int main(int argc, char** argv)
     std::ofstream f(out);
     f.precision(12);
     f << "solid drum\n";
+    auto vertex = [&](double x, double y, double z) { f << "   vertex " << x << " " << y << " " << z << "\n"; };
     for (size_t k = 0; k < profile.size(); ++k) {
         const auto [a0, r0] = profile[k];
         const auto [next, r1] = profile[(k + 1) % profile.size()];
@@ -62,7 +63,6 @@ int main(int argc, char** argv)
         const double y0 = r0 * std::cos(a0), z0 = r0 * std::sin(a0), y1 = r1 * std::cos(a1), z1 = r1 * std::sin(a1);
         // the strip's normal: the chord turned a quarter counter-clockwise, towards the axis
         const double len = std::hypot(y1 - y0, z1 - z0), ny = -(z1 - z0) / len, nz = (y1 - y0) / len;
-        auto vertex = [&](double x, double y, double z) { f << "   vertex " << x << " " << y << " " << z << "\n"; };
         for (int t = 0; t < 2; ++t) {
             f << " facet normal 0 " << ny << " " << nz << "\n  outer loop\n";
             // ordered so the right-hand normal points inwards

@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -81,32 +82,33 @@ std::vector<DepthBin> velocityProfile(const Bed& s, const FreeSurface& fs, doubl
     if (t.z() > 0.0 || (t.z() == 0.0 && omegaSign > 0.0)) t = -t;
     const Eigen::Vector3d n(0.0, fs.slope / norm, -1.0 / norm);
     const Eigen::Vector3d P(0.0, fs.midY, fs.intercept + fs.slope * fs.midY);
+    // The strip's beads not in flight: their depth below the line and their
+    // streamwise velocity, in bead order.
+    std::vector<std::pair<double, double>> strip;
+    for (size_t i = 0; i < s.position.size(); ++i) {
+        Eigen::Vector3d r = s.position[i] - P;
+        r.x() = 0.0;
+        const double h = r.dot(n);
+        if (std::fabs(r.dot(t)) <= 2.0 * d && h >= -d) strip.emplace_back(h, s.velocity[i].dot(t));
+    }
+    if (strip.size() < 3) return profile;
     // A curved surface (fast or steep flows) can pass more than d below the
     // fitted line at mid-chord, which leaves the top bin empty: depths are then
     // measured from the strip's third-highest bead below the line (the rule
     // that places the line in each surface bin) instead. Where the top bin has
     // beads, nothing changes.
-    std::vector<double> strip;  // depths of the strip's beads not in flight
-    bool top = false;
-    for (const Eigen::Vector3d& x : s.position) {
-        Eigen::Vector3d r = x - P;
-        r.x() = 0.0;
-        const double h = r.dot(n);
-        if (std::fabs(r.dot(t)) > 2.0 * d || h < -d) continue;
-        strip.push_back(h), top = top || h < d;
-    }
-    if (strip.size() < 3) return profile;
-    std::nth_element(strip.begin(), strip.begin() + 2, strip.end());
-    const double origin = top ? 0.0 : strip[2];
+    std::vector<double> depths;
+    for (const auto& [h, u] : strip) depths.push_back(h);
+    std::nth_element(depths.begin(), depths.begin() + 2, depths.end());
+    const bool top = std::any_of(strip.begin(), strip.end(), [d](const auto& e) { return e.first < d; });
+    const double origin = top ? 0.0 : depths[2];
     std::map<int, DepthBin> bins;
-    for (size_t i = 0; i < s.position.size(); ++i) {
-        Eigen::Vector3d r = s.position[i] - P;
-        r.x() = 0.0;
-        const double h = r.dot(n) - origin;
-        if (std::fabs(r.dot(t)) > 2.0 * d || h < -d) continue;
+    for (const auto& [depth, u] : strip) {
+        const double h = depth - origin;
+        if (h < -d) continue;
         const int k = static_cast<int>(std::floor(std::max(h, 0.0) / d));
         DepthBin& b = bins[k];
-        b.index = k, ++b.beads, b.depth += h, b.u += s.velocity[i].dot(t);
+        b.index = k, ++b.beads, b.depth += h, b.u += u;
     }
     for (auto& [k, b] : bins) {
         b.depth /= b.beads, b.u /= b.beads;
@@ -144,7 +146,7 @@ double drumForce(const BedAnalysis& a)
         if (!touching(a.bed, i)) continue;
         // direction of the drum surface's motion at the bead: omega x r
         const Eigen::Vector3d& x = a.bed.position[i];
-        f += a.bed.wallForce[i].dot(a.omegaSign * Eigen::Vector3d(0.0, -x.z(), x.y()).normalized());
+        f += a.bed.wallForce[i].dot(a.omegaSign() * Eigen::Vector3d(0.0, -x.z(), x.y()).normalized());
     }
     return a.wallContacts ? f / a.wallContacts : NAN;
 }
@@ -152,7 +154,7 @@ double drumForce(const BedAnalysis& a)
 double reposeAngle(const BedAnalysis& a)
 {
     // the bed rises on the side the drum carries it to
-    return a.surface.found ? std::atan(a.omegaSign * a.surface.slope) * 180.0 / M_PI : NAN;
+    return a.surface.found ? std::atan(a.omegaSign() * a.surface.slope) * 180.0 / M_PI : NAN;
 }
 
 double surfaceVelocity(const BedAnalysis& a)
@@ -219,9 +221,10 @@ double bedTurn(const BedAnalysis& a)
     return n ? sum / n / a.omega : NAN;
 }
 
-// Over the touching beads: the mean speed of the drum's surface past their
-// contact points (slip) and the mean contribution of their spin to the
-// contact point's motion (roll), each over the drum surface's speed there;
+// Over the touching beads: the mean velocity of the drum's surface past their
+// contact points along its motion (slip; signed, so slips either way cancel)
+// and the mean contribution of their spin to the contact point's motion
+// (roll), each over the drum surface's speed there;
 // nan without velocities and spins, or touching beads.
 double wallFraction(const BedAnalysis& a, bool slip)
 {
@@ -286,13 +289,12 @@ const std::vector<Metric>& metricTable()
 
 BedAnalysis analyseBed(const Bed& bed, double omega)
 {
-    const double omegaSign = omega >= 0.0 ? 1.0 : -1.0;
-    BedAnalysis a{bed, omega, omegaSign, 0.0, 0, FreeSurface{}, {}};
+    BedAnalysis a{bed, omega, 0.0, 0, FreeSurface{}, {}};
     if (bed.position.empty()) return a;
     a.diameter = 2.0 * bed.radius.front();
     for (size_t i = 0; i < bed.position.size(); ++i) a.wallContacts += touching(bed, i);
     a.surface = fitFreeSurface(bed);
-    a.profile = velocityProfile(bed, a.surface, a.diameter, omegaSign);
+    a.profile = velocityProfile(bed, a.surface, a.diameter, a.omegaSign());
     return a;
 }
 

@@ -49,11 +49,11 @@ struct DepthBin {
 struct BedAnalysis {
     const Bed& bed;
     double omega = 1.0;      // the drum's angular velocity about +x [rad/s] (> 0: counter-clockwise, y towards z)
-    double omegaSign = 1.0;  // its sign
     double diameter = 0.0;   // bead diameter d (from the first bead) [m]
     int wallContacts = 0;    // beads touching the drum
     FreeSurface surface;
     std::vector<DepthBin> profile;  // empty without velocities or a free surface
+    double omegaSign() const { return omega >= 0.0 ? 1.0 : -1.0; }
 };
 BedAnalysis analyseBed(const Bed& bed, double omega);
 

@@ -15,6 +15,7 @@ series, window means as steps).
 
 import argparse
 import math
+import shlex
 import sys
 from pathlib import Path
 
@@ -65,7 +66,7 @@ def main():
                              f"measure it with this drum_metrics (`drum_metrics series --cache` upgrades it)")
         runs.append((label, path, rows))
 
-    command = "tools/drum/windows.py " + " ".join(a if " " not in a else repr(a) for a in sys.argv[1:])
+    command = "tools/drum/windows.py " + shlex.join(sys.argv[1:])
     md = [harness.generated_note(command),
           f"# {args.rpm:g} rpm: runs over {args.window:g} s windows\n",
           "Means over each window of the snapshots' metrics (`drum_metrics metrics` defines them). "
