@@ -14,15 +14,21 @@ constexpr double kPi = 3.14159265358979323846;
 // wall: (1/meff + R1^2/I1 + R2^2/I2)^-1 = 2/7 meff.
 constexpr double kTangentialMassRatio = 2.0 / 7.0;
 
-// The tangential mass a contact point has when its force acts at lever arms
-// cri, crj of solid spheres (I = 2/5 m r^2): 1/m_t = 1/meff + cri^2/Ii +
-// crj^2/Ij. At cr = r it is 2/7 meff; LIGGGHTS' lever arm r - overlap/2 makes
-// it a little larger. A wall: mj = 0.
-inline double contactPointMass(double meff, double mi, double ri, double cri, double mj, double rj, double crj)
+// The mass the law's spring sees at a contact between solid spheres (I = 2/5
+// m r^2) whose force acts at LIGGGHTS' lever arms cri, crj (r - overlap/2).
+// The spring is driven by the contact point's velocity at the rigid arms ri,
+// rj (the glue's rigidArmVelocity): Pournin's et is defined for that point, and it is
+// the contact point's velocity before and after the contact. A force F at
+// arms cri, crj changes it at F (1/meff + ri cri/Ii + rj crj/Ij): that is the
+// mass. At cr = r it is 2/7 meff. A wall: mj = 0. Over one common
+// denominator (one division: it runs at every step of every contact under
+// exactCollision).
+inline double rigidArmMass(double meff, double mi, double ri, double cri, double mj, double rj, double crj)
 {
-    double inverse = 1.0 / meff + cri * cri / (0.4 * mi * ri * ri);
-    if (mj > 0.0) inverse += crj * crj / (0.4 * mj * rj * rj);
-    return 1.0 / inverse;
+    const double a = meff, b = 0.4 * mi * ri;  // 1/m = 1/a + cri/b (+ crj/c)
+    if (!(mj > 0.0)) return a * b / (b + a * cri);
+    const double c = 0.4 * mj * rj;
+    return a * b * c / (b * c + a * (c * cri + b * crj));
 }
 
 // Material data of one type pair, as given in the input script.

@@ -129,6 +129,10 @@ BodyStates bodyStates(const State& y, double t)
 struct Law {
     const Case& c;
     Coefficients k;
+    // rigidArmSpring: the tangential oscillator per unit mass, and the mass of
+    // the contact point at the rigid arms (set per state)
+    double unitKt = 0, unitCt = 0;
+    mutable double rigidMass = 0;
 
     double normalForce(const ContactKinematics& ck) const
     {
@@ -138,6 +142,13 @@ struct Law {
     // Returns the tangential force; `sliding` tells whether the cap binds.
     Vec3 tangentialForce(const Vec3& xi, const Vec3& vt, double Fn, bool& sliding) const
     {
+        if (c.rigidArmSpring) {
+            Vec3 f = -rigidMass * (unitKt * xi + unitCt * vt);
+            const double limit = frictionLimit(c.params.mu, Fn);
+            sliding = f.norm() > limit;
+            if (sliding) f *= limit / f.norm();
+            return f;
+        }
         if (c.tangential == Tangential::Pournin) {
             Vec3 f = -(k.kt * xi + k.ct * vt);
             const double limit = frictionLimit(c.params.mu, Fn);
@@ -159,6 +170,7 @@ struct Law {
     // Spring length consistent with the force when the cap binds.
     Vec3 slidingSpring(const Vec3& f, const Vec3& vt) const
     {
+        if (c.rigidArmSpring) return -(f / rigidMass + unitCt * vt) / unitKt;
         return c.tangential == Tangential::Pournin ? Vec3(-(f + k.ct * vt) / k.kt) : Vec3(-f / k.kt);
     }
 };
@@ -167,10 +179,22 @@ struct Law {
 
 Outcome integrateContactOde(const Case& c, int stepsPerTc)
 {
-    const Law law{c, scaled(pourninUnitCoefficients(c.params), c.effectiveMass())};
+    if (c.rigidArmSpring && c.limitForce)
+        throw std::invalid_argument("the reference's rigid-arm spring is exactCollision's law without limitForce");
+    Law law{c, scaled(pourninUnitCoefficients(c.params), c.effectiveMass())};
+    const Oscillator unit = pourninOscillator(c.params.tc, std::log(c.params.et));
+    law.unitKt = unit.k, law.unitCt = unit.c;
     const double m1 = c.mass1(), m2 = c.mass2();
     const double I1 = 0.4 * m1 * c.radius1 * c.radius1;
     const double I2 = 0.4 * m2 * c.radius2 * c.radius2;
+    // the spring's velocity: at LIGGGHTS' arms, or (rigidArmSpring) at the rigid arms
+    const auto springVelocity = [&](const BodyStates& s, const ContactKinematics& ck) {
+        if (!c.rigidArmSpring) return ck.tangentialVelocity;
+        const double arm1 = c.radius1 - 0.5 * ck.overlap, arm2 = c.radius2 - 0.5 * ck.overlap;
+        law.rigidMass = rigidArmMass(c.effectiveMass(), m1, c.radius1, arm1, m2, c.radius2, arm2);
+        const Vec3 shortening = c.isWall() ? Vec3(0.5 * ck.overlap * s.w1) : Vec3(0.5 * ck.overlap * (s.w1 + s.w2));
+        return Vec3(ck.tangentialVelocity - shortening.cross(ck.normal));
+    };
 
     auto rhs = [&](const State& y, State& dy, double) {
         const BodyStates s = bodyStates(y, 0.0);
@@ -183,7 +207,8 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
         const Vec3 xi = get(y, 6);
         const double Fn = law.normalForce(ck);
         bool sliding;
-        const Vec3 Ft = law.tangentialForce(xi, ck.tangentialVelocity, Fn, sliding);
+        const Vec3 w = springVelocity(s, ck);
+        const Vec3 Ft = law.tangentialForce(xi, w, Fn, sliding);
         const Vec3 F = Fn * n + Ft;
         const Vec3 nxF = n.cross(Ft);
         put(dy, 1, F / m1);
@@ -197,7 +222,7 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
             put(dy, 4, -F / m2);
             put(dy, 5, -(c.radius2 - 0.5 * ck.overlap) * nxF / I2);
         }
-        put(dy, 6, n.cross(ndot).cross(xi) + ck.tangentialVelocity);
+        put(dy, 6, n.cross(ndot).cross(xi) + w);
     };
 
     const double h = c.params.tc / stepsPerTc;
@@ -222,13 +247,14 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
             Vec3 xi = get(y, 6);
             xi -= xi.dot(ck.normal) * ck.normal;
             bool sliding;
-            const Vec3 Ft = law.tangentialForce(xi, ck.tangentialVelocity, law.normalForce(ck), sliding);
-            if (sliding) xi = law.slidingSpring(Ft, ck.tangentialVelocity);
+            const Vec3 w = springVelocity(bodyStates(y, t), ck);
+            const Vec3 Ft = law.tangentialForce(xi, w, law.normalForce(ck), sliding);
+            if (sliding) xi = law.slidingSpring(Ft, w);
             // Where kn xi + cn dxi/dt changes sign the cap mu |Fn| is zero:
             // the spring slid to zero force there, at any mu (an instant the
             // steps above would miss for large mu).
             const double force = viscoelastic::normalForce(law.k, ck.overlap, -ck.normalVelocity, false);
-            if (prevForce * force < 0.0) {
+            if (prevForce * force < 0.0 && !c.rigidArmSpring) {
                 const double since = h * force / (force - prevForce);
                 xi = law.slidingSpring(Vec3::Zero(), ck.tangentialVelocity) + since * ck.tangentialVelocity;
             }
