@@ -10,6 +10,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   multicontact  the dense column with exactRestitution, ~10 min
   collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
+  stability_exact  the dense column under exactRestitution's and exactCollision's coefficients, ~1 h
   reductions    6 / 12 / 24 mm periods from the grid, ~1 h
   walls         the drum wall: surface velocity or rotating mesh, 90 / 180 / 360 facets (same slab)
   yade_collide  YADE on the same two-body collisions (needs yade)
@@ -35,6 +36,7 @@ import peers  # noqa: E402
 import reductions  # noqa: E402
 import scaling  # noqa: E402
 import stability  # noqa: E402
+import stability_exact  # noqa: E402
 import walls  # noqa: E402
 import yade_collide  # noqa: E402
 
@@ -56,6 +58,7 @@ def settings(restart):
                                    "--drum-runs", "0.3:hooke,table:hooke", "--drum-fractions",
                                    stability.LONG_DRUM_FRACTIONS, "--drum-time", "0.2",
                                    "--drum-name", "stability_drum_long"]]),
+        "stability_exact": (stability_exact, [[]]),
         "reductions": (reductions, [[]]),
         "walls": (walls, [["--restart", slab]]),
         "yade_collide": (yade_collide, [[]]),
@@ -76,6 +79,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
         ("### Every single collision exact: exactCollision", [collision]),
         ("## 4. Stability map", [stability]),
+        ("### The guard under the exact laws", [stability_exact]),
         ("## 5. Scaling: the full drum", [scaling]),
         ("### Speed of the full scene: decomposition, wall, skin, stock", [full_scene]),
         ("## 6. Scene reductions", [reductions, walls]))

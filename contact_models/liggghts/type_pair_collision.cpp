@@ -53,9 +53,7 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
             // A binary contact under these laws is stable at any step; a bead
             // with many contacts is not: the same guard as the plain law, on
             // the stiffnesses actually applied.
-            const UnitCoefficients applied{c.normal.kStep, c.normal.cStep, kTangentialMassRatio * c.tangential.kStep,
-                                           kTangentialMassRatio * c.tangential.cStep};
-            const double stable = stableTimestep(applied);
+            const double stable = stableTimestep(appliedCoefficients(c.normal, c.tangential));
             if (dt > stable)
                 lmp->error->all(FLERR, format("%s: exactCollision: timestep %g s exceeds the stable timestep %g s of "
                                               "type pair (%d,%d) (tc %g s, en %g, et %g): the multi-contact limit of "

@@ -171,6 +171,53 @@ TEST_F(ContactLaw, LimitIsTheBinaryJuryLimitAndTheGuard)
     EXPECT_NEAR(criticalTimestepOf(z.at(8) * u.kn, z.at(8) * u.cn), 0.2e-4, 1e-9 * 0.2e-4);
 }
 
+TEST_F(ContactLaw, StockLawExactCollisionIsItsStepLaw)
+{
+    // the force of a contact under way: the step laws' kStep, cStep
+    // (tangential per unit m_t = 2/7 meff), which depend on dt
+    const Output o = run("stock --law exactCollision --dt 2e-5");
+    ASSERT_EQ(o.status, 0) << o.out;
+    const auto applied = [](const ContactParameters& p) {
+        const auto osc = exactCollisionOscillators(p, false);
+        return appliedCoefficients(stepLaw(osc->normal.k, osc->normal.c, 2e-5, false),
+                                   stepLaw(osc->tangential.k, osc->tangential.c, 2e-5, false));
+    };
+    const UnitCoefficients bead = applied(kBead), drum = applied(kDrum);
+    expectStock(o.out, {bead, drum, drum, drum});
+    // softer than Pournin's (the undamped step law: (2 sin(w dt / 2) / dt)^2 < w^2)
+    EXPECT_LT(bead.kn, pourninUnitCoefficients(kBead).kn);
+    const Output same = run("stock --law exactRestitution --dt 1e-5 --limit-force");
+    EXPECT_EQ(same.out, run("stock --exact --dt 1e-5 --limit-force").out);
+}
+
+TEST_F(ContactLaw, LimitOfAnExactLawIsTheGuardOnItsOwnCoefficients)
+{
+    // The applied coefficients depend on dt: the guard is the dt at which the
+    // guard of those coefficients is dt itself; just below it admits, just
+    // above not. Z at the guard is the guard's factor.
+    for (const char* law : {"exactRestitution", "exactCollision"}) {
+        const Output o = run(std::string("limit --en 0.3 --law ") + law);
+        ASSERT_EQ(o.status, 0) << o.out;
+        const double guard = numbers(lines(o.out).at(1), ',').at(4);
+        const auto stable = [&](double dt) {
+            if (std::string(law) == "exactRestitution") return stableTimestep(exactUnitCoefficients({1e-4, 0.3, 0.3, 0}, dt, false).unit);
+            const auto osc = exactCollisionOscillators({1e-4, 0.3, 0.3, 0}, false);
+            return stableTimestep(appliedCoefficients(stepLaw(osc->normal.k, osc->normal.c, dt, false),
+                                                      stepLaw(osc->tangential.k, osc->tangential.c, dt, false)));
+        };
+        EXPECT_LE(0.999 * guard, stable(0.999 * guard)) << law;
+        EXPECT_GT(1.001 * guard, stable(1.001 * guard)) << law;
+        // softer coefficients: a larger guard than the nominal law's
+        EXPECT_GT(guard, stableTimestep(ContactParameters{1e-4, 0.3, 0.3, 0})) << law;
+        const Output z = run(std::string("limit --en 0.3 --law ") + law + " --at " + std::to_string(guard / 1e-4));
+        EXPECT_NEAR(numbers(lines(z.out).at(1), ',').at(8), kCoordinationFactor, 1e-4) << law;
+    }
+    const Output bad = run("limit --en 0.3 --law exact");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_NE(bad.out.find("--law must be nominal, exactRestitution or exactCollision, not 'exact'"), std::string::npos)
+        << bad.out;
+}
+
 TEST_F(ContactLaw, BeadMassHasSeventeenDigits)
 {
     const Output o = run("bead-mass");

@@ -36,8 +36,10 @@ struct Case {
     // exactCollision's continuous law: the spring follows the contact point at
     // the rigid arms R and its force is the per-unit-mass oscillator times
     // the mass that point has (viscoelastic::rigidArmMass); the spring does
-    // not slide where Fn passes through zero. (The ODE only; LIGGGHTS runs
-    // take the setting from their options.)
+    // not slide where Fn passes through zero. The same law as exactCollision
+    // where friction never binds (the ODE caps at mu |Fn| at each instant,
+    // exactCollision at mu times the mean |Fn| over a step). (The ODE only;
+    // LIGGGHTS runs take the setting from their options.)
     bool rigidArmSpring = false;
     viscoelastic::ContactParameters params{1e-4, 0.56, 0.46, 0.5};
     double radius1 = 1.5e-3, radius2 = 1.5e-3;    // [m]

@@ -4,14 +4,19 @@
 // mass 0). Thesis conventions: bead-bead pairs take bead_*, pairs with the
 // drum take drum_*.
 //
-//   contact_law stock [--materials F] [--uniform EN] [--exact --dt DT [--limit-force]]
+//   contact_law stock [--materials F] [--uniform EN] [--law L --dt DT [--limit-force]]
 //       `fix property/global` lines of stock hooke/stiffness (absolute_damping
 //       on) with the constants `model viscoelastic` uses: with one mass per
 //       type every contact of a type pair has one meff, so the stock model
 //       computes the same forces. --uniform EN: en = et = EN for every pair.
-//   contact_law limit --en E [--et E2] [--tc T] [--at DT_OVER_TC]
+//       --law exactRestitution: its coefficients at DT; --law exactCollision:
+//       its step law's, the force of a contact under way (not its first and
+//       last steps). (--exact: --law exactRestitution.)
+//   contact_law limit --en E [--et E2] [--tc T] [--at DT_OVER_TC] [--law L]
 //       CSV: the binary stability limit (Jury) and the run's guard; with --at,
-//       the stiffening Z at which the guard's form gives that dt.
+//       the stiffening Z at which the guard's form gives that dt. With --law,
+//       the guard and Z on the coefficients that law applies (they depend on
+//       dt: the guard is the largest dt it admits, by bisection).
 //   contact_law bead-mass [--materials F]
 //       the mass of one bead [kg].
 //   contact_law single --en E [--et E2] [--tc T] [--limit-force] [--ratios R,...] [--phases N]
@@ -85,22 +90,51 @@ TypePairs typePairs(const Materials& m, std::optional<double> uniform)
     return t;
 }
 
-int stock(const Materials& m, std::optional<double> uniform, bool exact, double dt, bool limitForce)
+// The laws whose coefficients a contact under way applies.
+enum class Law { nominal, exactRestitution, exactCollision };
+
+Law parseLaw(const std::string& s)
+{
+    if (s == "nominal") return Law::nominal;
+    if (s == "exactRestitution") return Law::exactRestitution;
+    if (s == "exactCollision") return Law::exactCollision;
+    throw std::runtime_error("--law must be nominal, exactRestitution or exactCollision, not '" + s + "'");
+}
+
+// What `law` applies for type pair p at dt, per unit meff; nullopt where the
+// law has no solution (`why` says why).
+std::optional<UnitCoefficients> applied(const ContactParameters& p, Law law, double dt, bool limitForce,
+                                        std::string* why = nullptr)
+{
+    if (law == Law::nominal) return pourninUnitCoefficients(p);
+    if (law == Law::exactRestitution) {
+        const ExactSolution s = exactUnitCoefficients(p, dt, limitForce);
+        if (s.ok()) return s.unit;
+        if (why) *why = failureText(s);
+        return std::nullopt;
+    }
+    const auto osc = exactCollisionOscillators(p, limitForce);
+    if (!osc) {
+        if (why) *why = "exactCollision with limitForce: en below the cut law's reach";
+        return std::nullopt;
+    }
+    return appliedCoefficients(stepLaw(osc->normal.k, osc->normal.c, dt, limitForce),
+                               stepLaw(osc->tangential.k, osc->tangential.c, dt, false));
+}
+
+int stock(const Materials& m, std::optional<double> uniform, Law law, double dt, bool limitForce)
 {
     const TypePairs t = typePairs(m, uniform);
     std::array<Coefficients, kTypes * kTypes> c;
     for (int i = 0; i < kTypes; ++i)
         for (int j = 0; j < kTypes; ++j) {
-            UnitCoefficients u = pourninUnitCoefficients(t(i, j));
-            if (exact) {
-                const ExactSolution s = exactUnitCoefficients(t(i, j), dt, limitForce);
-                if (!s.ok()) {
-                    std::fprintf(stderr, "contact_law: type pair (%d,%d): %s\n", i + 1, j + 1, failureText(s).c_str());
-                    return 1;
-                }
-                u = s.unit;
+            std::string why;
+            const std::optional<UnitCoefficients> u = applied(t(i, j), law, dt, limitForce, &why);
+            if (!u) {
+                std::fprintf(stderr, "contact_law: type pair (%d,%d): %s\n", i + 1, j + 1, why.c_str());
+                return 1;
             }
-            c[i * kTypes + j] = scaled(u, effectiveMass(t.mass[i], t.mass[j]));
+            c[i * kTypes + j] = scaled(*u, effectiveMass(t.mass[i], t.mass[j]));
         }
     auto print = [&](const char* name, double Coefficients::*field) {
         std::printf("fix %s all property/global %s peratomtypepair %d", name, name, kTypes);
@@ -114,13 +148,35 @@ int stock(const Materials& m, std::optional<double> uniform, bool exact, double 
     return 0;
 }
 
-int limit(double tc, double en, double et, std::optional<double> at)
+// The stiffening Z at which the guard's form gives dt, on what `law` applies there.
+double stiffeningOf(const UnitCoefficients& u, double dt)
+{
+    return std::min(stiffeningAt(u.kn, u.cn, dt), stiffeningAt(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio, dt));
+}
+
+int limit(double tc, double en, double et, std::optional<double> at, Law law)
 {
     const ContactParameters p{tc, en, et, 0.0};
-    const double binary = criticalTimestep(p), guard = stableTimestep(p);
+    const double binary = criticalTimestep(p);
+    double guard = stableTimestep(p);
+    if (law != Law::nominal) {
+        // the largest dt the guard admits on the coefficients applied at that dt
+        const auto admits = [&](double dt) {
+            const auto u = applied(p, law, dt, false);  // past a law's reach: not admitted
+            return u && dt <= stableTimestep(*u);
+        };
+        double lo = 0.01 * tc, hi = binary;
+        if (!admits(lo)) throw std::runtime_error("the guard admits no timestep down to tc/100");
+        while (admits(hi)) hi *= 2.0;
+        for (int k = 0; k < 60; ++k) (admits(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+        guard = lo;
+    }
     std::printf("tc_s,en,et,binary_limit_s,guard_s,binary_limit_tc,guard_tc%s\n", at ? ",at_tc,stiffening_at" : "");
     std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", tc, en, et, binary, guard, binary / tc, guard / tc);
-    if (at) std::printf(",%.17g,%.17g", *at, stiffeningAt(p, *at * tc));
+    if (at) {
+        const auto u = applied(p, law, *at * tc, false);
+        std::printf(",%.17g,%.17g", *at, u ? stiffeningOf(*u, *at * tc) : NAN);
+    }
     std::printf("\n");
     return 0;
 }
@@ -200,8 +256,14 @@ int main(int argc, char** argv)
     CLI::Option* uniformOpt =
         stockCmd->add_option("--uniform", uniform, "en = et = EN for every type pair")->check(CLI::Range(1e-300, 1.0));
     CLI::Option* dtOpt = stockCmd->add_option("--dt", dt, "timestep [s]")->check(CLI::PositiveNumber);
-    CLI::Option* exactOpt = stockCmd->add_flag("--exact", exact, "the exactRestitution coefficients")->needs(dtOpt);
-    stockCmd->add_flag("--limit-force", limitForce, "limitForce on")->needs(exactOpt);
+    std::string stockLaw = "nominal";
+    CLI::Option* exactOpt = stockCmd->add_flag("--exact", exact, "the exactRestitution coefficients (--law exactRestitution)")
+                                ->needs(dtOpt);
+    CLI::Option* lawOpt = stockCmd->add_option("--law", stockLaw, "nominal, exactRestitution or exactCollision "
+                                                                  "(its step law: a contact under way)")
+                              ->needs(dtOpt)->excludes(exactOpt)->capture_default_str();
+    stockCmd->add_flag("--limit-force", limitForce, "limitForce on")->needs(dtOpt);
+    (void)lawOpt;
 
     CLI::App* limitCmd = app.add_subcommand("limit", "binary stability limit and guard, CSV");
     addMaterials(limitCmd);
@@ -215,6 +277,9 @@ int main(int argc, char** argv)
     CLI::Option* atOpt = limitCmd->add_option("--at", at,
                                               "dt/tc: also the stiffening Z at which the guard's form gives it")
                              ->check(CLI::PositiveNumber);
+    std::string limitLaw = "nominal";
+    limitCmd->add_option("--law", limitLaw, "the coefficients applied: nominal, exactRestitution or exactCollision")
+        ->capture_default_str();
 
     CLI::App* massCmd = app.add_subcommand("bead-mass", "mass of one bead [kg]");
     addMaterials(massCmd);
@@ -245,10 +310,10 @@ int main(int argc, char** argv)
     try {
         if (*stockCmd)
             return stock(Materials(path), *uniformOpt ? std::optional<double>(uniform) : std::nullopt,
-                         exact, dt, limitForce);
+                         exact ? Law::exactRestitution : parseLaw(stockLaw), dt, limitForce);
         if (*limitCmd)
             return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en,
-                         *atOpt ? std::optional<double>(at) : std::nullopt);
+                         *atOpt ? std::optional<double>(at) : std::nullopt, parseLaw(limitLaw));
         if (*singleCmd)
             return single({*sTcOpt ? sTc : Materials(path)["bead_tc"], sEn, *sEtOpt ? sEt : sEn, 0.0}, sLimit, ratios,
                           phases);
