@@ -156,7 +156,16 @@ def summary(rows):
         gstop = stability.first(here, lambda r: r["model"] == "model" and r["guard"] == "error")
         mfail = stability.first(here, lambda r: r["model"] == "model" and r["guard"] == "none" and r["status"] != "ok")
         guard = limit(law, en)["guard_tc"]
-        out.append({"law": law, "en": en, "load": load, "guard": guard, "sfail": sfail,
+        # the criterion's margin: the model runs' largest energy where the guard admits them, against
+        # that at the reference, and against the stock run's at the same dt over the same at the reference
+        ref = {r["model"]: r["ke_late_mean_J"] for r in here if r["dt_over_tc"] == REFERENCE}
+        admitted = [r for r in here if r["model"] == "model" and r["guard"] == "none" and r["status"] == "ok"]
+        stock_at = {r["dt_over_tc"]: r["ke_late_mean_J"] for r in here if r["model"] == "stock"}
+        rise = max((r["ke_late_mean_J"] / ref["model"] for r in admitted), default=float("nan"))
+        vs_stock = max((r["ke_late_mean_J"] / stock_at[r["dt_over_tc"]] / (ref["model"] / ref["stock"])
+                        for r in admitted if r["dt_over_tc"] in stock_at), default=float("nan"))
+        out.append({"law": law, "en": en, "load": load, "guard": guard, "sfail": sfail, "rise": rise,
+                    "vs_stock": vs_stock,
                     "z": None if sfail is None else limit(law, en, sfail)["stiffening_at"],
                     "margin": None if sfail is None else 1 - guard / sfail, "gstop": gstop, "mfail": mfail,
                     "before": "yes" if (sfail is None or guard < sfail) and mfail is None else "NO"})
@@ -189,6 +198,8 @@ def section(res, meta, rows):
             ("Z at failure", lambda r: "–" if r["z"] is None else f"{r['z']:.2f}", None),
             ("guard ERROR in the model runs from dt/tc", lambda r: "none" if r["gstop"] is None else f"{r['gstop']:g}", None),
             ("model run failing below the guard", lambda r: "none" if r["mfail"] is None else f"{r['mfail']:g}", None),
+            ("model runs the guard admits: largest energy / tc/10's", "rise", "{:.1f}"),
+            ("the same, over stock's at that dt / at tc/10", "vs_stock", "{:.1f}"),
             ("guard stops before failure", "before", None)])
         + "\n<details><summary>all runs</summary>\n\n"
         + harness.markdown(rows, [("law", "law", None)] + [

@@ -261,7 +261,14 @@ TEST(ExactCollision, AnEndedContactHeldByOthersGoesOnUnderTheStepLaw)
     EXPECT_EQ(a.phase, CollisionPhase::ended);
     CollisionState b = ended;
     const double force = exactCollisionStep(law, b, x, held).force;
-    EXPECT_EQ(b.phase, CollisionPhase::touching);
-    // the step law of a contact under way through these two samples: repulsive here
+    EXPECT_EQ(b.phase, CollisionPhase::held);
+    // the plain step law through these two samples: repulsive here
     EXPECT_NEAR(force, law.kStep * x + law.cStep * held, 1e-9 * law.kStep * x);
+    // and no end step after it (its exit kick would make it end, be held and
+    // end again): a held contact whose overlap is about to close still gets
+    // the plain step law, not the force that sets the binary exit rate
+    const double closingFast = -2.0 * x / dt;
+    EXPECT_NEAR(exactCollisionStep(law, b, x, closingFast).force, law.kStep * x + law.cStep * closingFast,
+                1e-9 * law.kStep * x);
+    EXPECT_EQ(b.phase, CollisionPhase::held);
 }
