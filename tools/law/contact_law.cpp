@@ -259,11 +259,10 @@ int main(int argc, char** argv)
     std::string stockLaw = "nominal";
     CLI::Option* exactOpt = stockCmd->add_flag("--exact", exact, "the exactRestitution coefficients (--law exactRestitution)")
                                 ->needs(dtOpt);
-    CLI::Option* lawOpt = stockCmd->add_option("--law", stockLaw, "nominal, exactRestitution or exactCollision "
+    stockCmd->add_option("--law", stockLaw, "nominal, exactRestitution or exactCollision "
                                                                   "(its step law: a contact under way)")
                               ->needs(dtOpt)->excludes(exactOpt)->capture_default_str();
     stockCmd->add_flag("--limit-force", limitForce, "limitForce on")->needs(dtOpt);
-    (void)lawOpt;
 
     CLI::App* limitCmd = app.add_subcommand("limit", "binary stability limit and guard, CSV");
     addMaterials(limitCmd);
