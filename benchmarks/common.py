@@ -66,15 +66,18 @@ def stock_file(path, uniform=None, exact_dt=None):
     return path
 
 
-def limits(en):
-    """`contact_law limit --en EN`: {tc_s, en, et, binary_limit_s, guard_s, binary_limit_tc, guard_tc}."""
-    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en))[0]
+def limits(en, law="nominal"):
+    """`contact_law limit --en EN --law LAW`: {tc_s, en, et, binary_limit_s, guard_s, binary_limit_tc,
+    guard_tc}, the guard on the coefficients LAW applies."""
+    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--law", law))[0]
 
 
-def stiffening(en, fraction):
-    """`contact_law limit --en EN --at FRACTION`: the stiffening Z for which the binary (Jury) limit
-    of a contact Z times stiffer and more damped is dt = FRACTION tc (the guard's form)."""
-    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--at", fraction))[0]["stiffening_at"]
+def stiffening(en, fraction, law="nominal"):
+    """`contact_law limit --en EN --at FRACTION --law LAW`: the stiffening Z for which the binary (Jury)
+    limit of a contact Z times stiffer and more damped is dt = FRACTION tc (the guard's form), on the
+    coefficients LAW applies at that dt."""
+    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--at", fraction, "--law", law))[0][
+        "stiffening_at"]
 
 
 def window_average(prefix, dt, rpm=RPM, skip=None, until=None, after_first=False):

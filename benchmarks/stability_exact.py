@@ -14,8 +14,7 @@ stability.py: a loaded column at en 0.95 breathes (its energy swings between 1e-
 0.03 s), so one sample is no measure. The factor is 100, not 10: these laws' coefficients change
 with dt, and so does the energy a settled column keeps (stable runs, whose energy decays through
 the run, stay within 1-30 times the reference's; unstable ones grow by decades from one dt to the
-next). A sweep stops after two failing stock runs in a row once the
-guard has stopped the model. Runs whose logs are complete in post/stability_exact/ are read, not
+next). A sweep stops after two failing stock runs in a row once the guard has stopped the model. Runs whose logs are complete in post/stability_exact/ are read, not
 rerun (an interrupted sweep resumes).
 Writes OUT/stability_exact.csv (one row per run) and OUT/stability_exact.json."""
 
@@ -142,12 +141,6 @@ def run(args):
         "date": common.today()})
 
 
-def limit(law, en, at=None):
-    """`contact_law limit --law LAW --en EN [--at AT]`: guard_tc (and stiffening_at)."""
-    extra = [] if at is None else ["--at", at]
-    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--law", law, *extra))[0]
-
-
 def summary(rows):
     out = []
     for law, en, load in sorted({(r["law"], r["en"], r["load"]) for r in rows}):
@@ -155,7 +148,7 @@ def summary(rows):
         sfail = stability.first(here, lambda r: r["model"] == "stock" and r["status"] != "ok")
         gstop = stability.first(here, lambda r: r["model"] == "model" and r["guard"] == "error")
         mfail = stability.first(here, lambda r: r["model"] == "model" and r["guard"] == "none" and r["status"] != "ok")
-        guard = limit(law, en)["guard_tc"]
+        guard = common.limits(en, law)["guard_tc"]
         # the criterion's margin: the model runs' largest energy where the guard admits them, against
         # that at the reference, and against the stock run's at the same dt over the same at the reference
         ref = {r["model"]: r["ke_late_mean_J"] for r in here if r["dt_over_tc"] == REFERENCE}
@@ -166,7 +159,7 @@ def summary(rows):
                         for r in admitted if r["dt_over_tc"] in stock_at), default=float("nan"))
         out.append({"law": law, "en": en, "load": load, "guard": guard, "sfail": sfail, "rise": rise,
                     "vs_stock": vs_stock,
-                    "z": None if sfail is None else limit(law, en, sfail)["stiffening_at"],
+                    "z": None if sfail is None else common.stiffening(en, sfail, law),
                     "margin": None if sfail is None else 1 - guard / sfail, "gstop": gstop, "mfail": mfail,
                     "before": "yes" if (sfail is None or guard < sfail) and mfail is None else "NO"})
     return out

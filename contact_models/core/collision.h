@@ -92,7 +92,7 @@ struct StepLaw {
     double inverseDt = 0;
     // An ended contact whose overlap would take longer than this to close at
     // its rate is held by other contacts (set by stepLaw from binary
-    // collisions at 64 start phases: 1.5 times the longest they take, and at
+    // collisions at 65 start phases: 1.5 times the longest they take, and at
     // least half a step).
     double heldAfter = 1e300;
 };
@@ -265,8 +265,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // start the cycle again: ended, held, ended, thousands of times in a
         // settled column at en 0.95 and dt/tc 0.3, which gained 30-70 times
         // its kinetic energy; with no force while held, 150 times at 0.25).
-        if (!(v > 0.0) && x <= -v * law.heldAfter) return r;
         if (!(v > 0.0)) {
+            if (x <= -v * law.heldAfter) return r;
             state.phase = CollisionPhase::held;
             return heldStep(law, x, v);
         }

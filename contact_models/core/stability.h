@@ -95,12 +95,17 @@ inline double stableTimestep(const ContactParameters& p)
 
 // The stiffening at which a type pair's guard would be dt (what measured
 // onsets are expressed in): the guard is its most critical oscillator's, the
-// one that reaches dt at the smaller Z.
-inline double stiffeningAt(const ContactParameters& p, double dt)
+// one that reaches dt at the smaller Z. For any applied coefficients per unit
+// meff, or for Pournin's of a type pair.
+inline double stiffeningAt(const UnitCoefficients& u, double dt)
 {
-    const UnitCoefficients u = pourninUnitCoefficients(p);
     return std::min(stiffeningAt(u.kn, u.cn, dt),
                     stiffeningAt(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio, dt));
+}
+
+inline double stiffeningAt(const ContactParameters& p, double dt)
+{
+    return stiffeningAt(pourninUnitCoefficients(p), dt);
 }
 
 }  // namespace viscoelastic

@@ -148,12 +148,6 @@ int stock(const Materials& m, std::optional<double> uniform, Law law, double dt,
     return 0;
 }
 
-// The stiffening Z at which the guard's form gives dt, on what `law` applies there.
-double stiffeningOf(const UnitCoefficients& u, double dt)
-{
-    return std::min(stiffeningAt(u.kn, u.cn, dt), stiffeningAt(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio, dt));
-}
-
 int limit(double tc, double en, double et, std::optional<double> at, Law law)
 {
     const ContactParameters p{tc, en, et, 0.0};
@@ -175,7 +169,7 @@ int limit(double tc, double en, double et, std::optional<double> at, Law law)
     std::printf("%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", tc, en, et, binary, guard, binary / tc, guard / tc);
     if (at) {
         const auto u = applied(p, law, *at * tc, false);
-        std::printf(",%.17g,%.17g", *at, u ? stiffeningOf(*u, *at * tc) : NAN);
+        std::printf(",%.17g,%.17g", *at, u ? stiffeningAt(*u, *at * tc) : NAN);
     }
     std::printf("\n");
     return 0;
