@@ -98,9 +98,9 @@ void ContactPournin(benchmark::State& state)
 }
 
 // The same contacts under exactCollision: the normal step law and the
-// tangential one, with what LIGGGHTS' glue adds per step: the contact
-// point's velocity at the rigid arms from the spins and the mass the spring
-// sees (lever arms R - overlap/2). Its per-contact cost against
+// tangential one, with what LIGGGHTS' glue adds per step: the spring's drive
+// from the contact point's velocity and the spins, and the mass it sees
+// (springDrive; lever arms R - overlap/2). Its per-contact cost against
 // ContactPournin's is the price of exactCollision in the core.
 void ContactExactCollision(benchmark::State& state)
 {
@@ -115,9 +115,9 @@ void ContactExactCollision(benchmark::State& state)
             TangentialState s = fresh(k.state);
             const CollisionStep step = exactCollisionStep(normal, collision, k.overlap, k.rate);
             const double arm = r - 0.5 * k.overlap;
-            const Vec3 w = k.vt - ((r - arm) * k.spinI + (r - arm) * k.spinJ).cross(k.n);
-            const double mt = rigidArmMass(k.meff, 2.0 * k.meff, r, arm, 2.0 * k.meff, r, arm);
-            const Vec3 ft = pourninExactTangentialForce(s, k.n, w, mt, tangential, step,
+            const SpringDrive drive =
+                springDrive(k.vt, k.n, k.overlap, k.meff, 2.0 * k.meff, r, arm, k.spinI, 2.0 * k.meff, r, arm, k.spinJ);
+            const Vec3 ft = pourninExactTangentialForce(s, k.n, drive.rate, drive.mass, tangential, step,
                                                         frictionLimit(0.5, k.meff * step.friction), true);
             benchmark::DoNotOptimize(ft);
         }

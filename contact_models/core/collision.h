@@ -409,6 +409,38 @@ inline V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V&
     return -(law.kStep * xi + law.cStep * w);  // the common case: inside the contact
 }
 
+// What drives exactCollision's tangential spring: a rate U whose change over
+// a step is the tangential force alone divided by a mass (so that the spring
+// and U are Pournin's oscillator, whose et is exact), and that mass.
+// U = s vt - (ri wi + rj wj) x n with s = d / (ri + rj), d the distance of
+// the centres:
+//  - the spins at the rigid arms r (not LIGGGHTS' r - overlap/2, whose
+//    change during the contact would move the contact point of a spinning
+//    sphere without any force);
+//  - the orbital part vt scaled by s: the orbital angular momentum of the
+//    pair, d vt, changes by the tangential force's torque alone (d Ft /
+//    meff), while vt itself is fed by the turning normal (vt vn / d: +1.6 %
+//    on et for a pair at 1 m/s). Leapfrog keeps that angular momentum
+//    exactly, with the positions of one step and the velocities of the half
+//    step before (what LIGGGHTS samples), so the steps keep the oscillator.
+// Before and after a contact s = 1: U is the contact point's velocity that
+// et is measured on. (A spin about the normal still feeds U through the
+// turning normal, by about w.n tc / 2 relative: not corrected.)
+// vtr is LIGGGHTS' contact-point velocity, vt - (cri wi + crj wj) x n; a wall
+// has mj = 0 (wj, rj, crj unused, s = 1).
+struct SpringDrive {
+    Vec3 rate;    // U [m/s]
+    double mass;  // [kg]
+};
+
+inline SpringDrive springDrive(const Vec3& vtr, const Vec3& n, double overlap, double meff, double mi, double ri,
+                               double cri, const Vec3& wi, double mj, double rj, double crj, const Vec3& wj)
+{
+    if (!(mj > 0.0)) return {vtr - ((ri - cri) * wi).cross(n), rigidArmMass(meff, mi, ri, cri, 0.0, 0.0, 0.0)};
+    const double s = 1.0 - overlap / (ri + rj);
+    return {s * vtr - ((ri - s * cri) * wi + (rj - s * crj) * wj).cross(n), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s)};
+}
+
 // `tangential pournin` under exactCollision: law.h's pourninTangentialForce
 // with the first and last steps of exactTangentialStep and the step-exact
 // law between. `mt` is the contact's tangential mass, `law` the tangential

@@ -16,19 +16,20 @@ constexpr double kTangentialMassRatio = 2.0 / 7.0;
 
 // The mass the law's spring sees at a contact between solid spheres (I = 2/5
 // m r^2) whose force acts at LIGGGHTS' lever arms cri, crj (r - overlap/2).
-// The spring is driven by the contact point's velocity at the rigid arms ri,
-// rj (the glue's rigidArmVelocity): Pournin's et is defined for that point, and it is
-// the contact point's velocity before and after the contact. A force F at
-// arms cri, crj changes it at F (1/meff + ri cri/Ii + rj crj/Ij): that is the
-// mass. At cr = r it is 2/7 meff. A wall: mj = 0. Over one common
-// denominator (one division: it runs at every step of every contact under
-// exactCollision).
-inline double rigidArmMass(double meff, double mi, double ri, double cri, double mj, double rj, double crj)
+// The spring is driven by the rate U of collision.h's springDrive: the
+// contact point's tangential velocity at the rigid arms ri, rj, its orbital
+// part scaled by `orbit` = d / (ri + rj) (d the distance of the centres; 1 on
+// a wall). A force F at arms cri, crj changes U at F (orbit/meff + ri cri/Ii +
+// rj crj/Ij): that is the mass. At first touch it is 2/7 meff. A wall: mj = 0.
+// Over one common denominator (one division: it runs at every step of every
+// contact under exactCollision).
+inline double rigidArmMass(double meff, double mi, double ri, double cri, double mj, double rj, double crj,
+                           double orbit = 1.0)
 {
-    const double a = meff, b = 0.4 * mi * ri;  // 1/m = 1/a + cri/b (+ crj/c)
-    if (!(mj > 0.0)) return a * b / (b + a * cri);
+    const double a = meff, b = 0.4 * mi * ri;  // 1/m = orbit/a + cri/b (+ crj/c)
+    if (!(mj > 0.0)) return a * b / (orbit * b + a * cri);
     const double c = 0.4 * mj * rj;
-    return a * b * c / (b * c + a * (c * cri + b * crj));
+    return a * b * c / (orbit * b * c + a * (c * cri + b * crj));
 }
 
 // Material data of one type pair, as given in the input script.

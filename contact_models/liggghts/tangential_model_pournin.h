@@ -68,14 +68,17 @@ public:
         const bool exact = t && t->exactCollision();
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
         const double limit = viscoelastic::frictionLimit(mu, exact ? t->collisionStep().friction : sidata.Fn);
-        const Vec3 Ft = exact
-            ? viscoelastic::pourninExactTangentialForce(state, normal, rigidArmVelocity(sidata, normal, vt),
-                                                        rigidArmMass(sidata),
-                                                        t->collision(sidata.itype, sidata.jtype).tangential,
-                                                        t->collisionStep(), limit, advance)
-            : viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
-                                                   advance, unclippedNormalForce(sidata),
-                                                   viscoelastic::timeSinceTouch(sidata.deltan, -sidata.vn, update->dt));
+        Vec3 Ft;
+        if (exact) {
+            const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
+            Ft = viscoelastic::pourninExactTangentialForce(state, normal, drive.rate, drive.mass,
+                                                           t->collision(sidata.itype, sidata.jtype).tangential,
+                                                           t->collisionStep(), limit, advance);
+        } else {
+            Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
+                                                      advance, unclippedNormalForce(sidata),
+                                                      viscoelastic::timeSinceTouch(sidata.deltan, -sidata.vn, update->dt));
+        }
         if (advance) {
             for (int d = 0; d < 3; ++d) {
                 h[d] = state.xi[d];
@@ -115,22 +118,16 @@ private:
         return viscoelastic::normalForce({d.kn, d.gamman, d.kt, d.gammat}, d.deltan, -d.vn, false);
     }
 
-    // exactCollision's spring follows the contact point at the rigid arms
-    // (core/pournin.h, rigidArmMass): LIGGGHTS' vtr is taken at the arms
-    // r - overlap/2, whose shortening during the contact would move the
-    // contact point of a spinning sphere without any force (+1.3 % on et on
-    // a wall at 1 m/s).
-    static viscoelastic::Vec3 rigidArmVelocity(const SurfacesIntersectData& d, const viscoelastic::Vec3& n,
-                                               const viscoelastic::Vec3& vtr)
+    // exactCollision's spring: the rate and mass of core/collision.h's
+    // springDrive, from LIGGGHTS' contact-point velocity vtr.
+    static viscoelastic::SpringDrive springDrive(const SurfacesIntersectData& d, const viscoelastic::Vec3& n,
+                                                 const viscoelastic::Vec3& vtr)
     {
-        viscoelastic::Vec3 shortening = (d.radi - d.cri) * viscoelastic::Vec3(d.omega_i[0], d.omega_i[1], d.omega_i[2]);
-        if (!d.is_wall)
-            shortening += (d.radj - d.crj) * viscoelastic::Vec3(d.omega_j[0], d.omega_j[1], d.omega_j[2]);
-        return vtr - shortening.cross(n);
-    }
-    static double rigidArmMass(const SurfacesIntersectData& d)
-    {
-        return viscoelastic::rigidArmMass(d.meff, d.mi, d.radi, d.cri, d.is_wall ? 0.0 : d.mj, d.radj, d.crj);
+        using viscoelastic::Vec3;
+        const Vec3 wi(d.omega_i[0], d.omega_i[1], d.omega_i[2]);
+        if (d.is_wall) return viscoelastic::springDrive(vtr, n, d.deltan, d.meff, d.mi, d.radi, d.cri, wi, 0.0, 0.0, 0.0, wi);
+        return viscoelastic::springDrive(vtr, n, d.deltan, d.meff, d.mi, d.radi, d.cri, wi, d.mj, d.radj, d.crj,
+                                         Vec3(d.omega_j[0], d.omega_j[1], d.omega_j[2]));
     }
 
     // The normal model's table (registered under the contact model both belong to).

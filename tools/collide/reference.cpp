@@ -63,11 +63,37 @@ ContactKinematics kinematics(const Case& c, const BodyStates& s)
     return k;
 }
 
+BodyStates atTouch(const Case& c, const BodyStates& s)
+{
+    // free flight: positions linear in time, velocities and spins constant
+    const Vec3 r = c.isWall() ? Vec3(s.x1.x(), 0.0, 0.0) : Vec3(s.x1 - s.x2);
+    const Vec3 v = c.isWall() ? Vec3(s.v1.x(), 0.0, 0.0) : Vec3(s.v1 - s.v2);
+    const double reach = c.isWall() ? c.radius1 : c.radius1 + c.radius2;
+    // |r + tau v| = reach: tau^2 v.v + 2 tau r.v + r.r - reach^2 = 0, the root nearest 0
+    const double a = v.squaredNorm(), b = r.dot(v), q = r.squaredNorm() - reach * reach;
+    const double disc = b * b - a * q;
+    if (!(a > 0.0) || disc < 0.0) return s;  // at rest, or the line of motion misses the touching distance
+    const double root = std::sqrt(disc);
+    // the two roots (-b -+ root) / a, written so that neither cancels
+    if (q == 0.0) return s;  // touching now
+    const double t1 = b > 0.0 ? -q / (b + root) : (root - b) / a, t2 = b > 0.0 ? -(b + root) / a : q / (root - b);
+    const double tau = std::fabs(t1) < std::fabs(t2) ? t1 : t2;
+    BodyStates m = s;
+    m.time += tau;
+    m.x1 += tau * s.v1;
+    if (!c.isWall()) m.x2 += tau * s.v2;
+    return m;
+}
+
 Outcome outcomeOf(const Case& c, const BodyStates& before, const BodyStates& after, double duration,
                   double peakOverlap)
 {
-    const ContactKinematics k0 = kinematics(c, before);
-    const ContactKinematics k1 = kinematics(c, after);
+    // Read at the instants of touch and separation: apart, the line of
+    // centres of a pair still turns (by about vt dt / 2R in a step), and with
+    // it the split of the relative velocity into normal and tangential parts
+    // (a frame one step after separation would shift et by up to vn dt / 2R).
+    const ContactKinematics k0 = kinematics(c, atTouch(c, before));
+    const ContactKinematics k1 = kinematics(c, atTouch(c, after));
     Outcome o;
     o.restitution = -k1.normalVelocity / k0.normalVelocity;
     o.duration = duration;
@@ -187,13 +213,15 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
     const double m1 = c.mass1(), m2 = c.mass2();
     const double I1 = 0.4 * m1 * c.radius1 * c.radius1;
     const double I2 = 0.4 * m2 * c.radius2 * c.radius2;
-    // the spring's velocity: at LIGGGHTS' arms, or (rigidArmSpring) at the rigid arms
+    // the spring's velocity: at LIGGGHTS' arms, or (rigidArmSpring) exactCollision's springDrive
     const auto springVelocity = [&](const BodyStates& s, const ContactKinematics& ck) {
         if (!c.rigidArmSpring) return ck.tangentialVelocity;
         const double arm1 = c.radius1 - 0.5 * ck.overlap, arm2 = c.radius2 - 0.5 * ck.overlap;
-        law.rigidMass = rigidArmMass(c.effectiveMass(), m1, c.radius1, arm1, m2, c.radius2, arm2);
-        const Vec3 shortening = c.isWall() ? Vec3(0.5 * ck.overlap * s.w1) : Vec3(0.5 * ck.overlap * (s.w1 + s.w2));
-        return Vec3(ck.tangentialVelocity - shortening.cross(ck.normal));
+        const viscoelastic::SpringDrive drive =
+            viscoelastic::springDrive(ck.tangentialVelocity, ck.normal, ck.overlap, c.effectiveMass(), m1, c.radius1,
+                                      arm1, s.w1, m2, c.radius2, arm2, s.w2);
+        law.rigidMass = drive.mass;
+        return drive.rate;
     };
 
     auto rhs = [&](const State& y, State& dy, double) {

@@ -87,6 +87,11 @@ ContactKinematics kinematics(const Case& c, const BodyStates& s);
 Outcome outcomeOf(const Case& c, const BodyStates& before, const BodyStates& after, double duration,
                   double peakOverlap);
 
+// The bodies moved in free flight (both ways in time) to the nearest instant
+// at which they just touch: what outcomeOf reads. Unchanged if the line of
+// relative motion never reaches the touching distance.
+BodyStates atTouch(const Case& c, const BodyStates& s);
+
 // Initial state: touching (zero overlap), approaching.
 BodyStates initialState(const Case& c, double gap = 0.0);
 
