@@ -101,7 +101,7 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
     // up to the pair's centrifugal shortening of the contact (the reference
     // test below), and the steps keep it: leapfrog keeps the orbital angular
     // momentum exactly. Measured worst phase against the law (reference ODE,
-    // tc/20000, itself within about 1e-5): 4e-5 for en and et at tc/5 and
+    // tc/20000, itself within about 4e-5; 8e-6 at tc/100000): 4e-5 for en and et at tc/5 and
     // 1 m/s, 2e-6 at 0.1 m/s. Tolerance 1e-4 + 0.01 vn dt / R (2.3e-4 at tc/5
     // and 1 m/s): the spring driven at the plain contact point (no orbital
     // factor) missed its own law by 0.3 to 1.2 vn dt / R (9.5e-4 at tc/10),
@@ -155,7 +155,8 @@ TEST(ExactCollision, ReferenceRigidArmSpringOnAPairMissesEtOnlyByTheCentrifugalS
     // A pair's tangential motion pulls the centres apart (vt^2 / d), so its
     // contact ends earlier than tc and cuts the tangential oscillator short:
     // et rises by about K (vt^2 / vn) tc / R, measured K = 0.15 (0.1-3 m/s,
-    // vt/vn 0.2 and 1; vt the relative tangential speed of the centres).
+    // vt/vn 0.2 and 1; vt the relative tangential speed of the centres;
+    // equal spheres: with R2 = R1/3, denser, K reached 0.23 in a review).
     // Bound: K = 0.25, plus the ODE's 3e-5. The spring driven at the plain
     // contact point (no orbital factor) is off by 1.6 % at vn 1 m/s, vt/vn
     // 0.2, 24 times this bound.
