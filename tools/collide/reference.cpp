@@ -155,10 +155,16 @@ BodyStates bodyStates(const State& y, double t)
 struct Law {
     const Case& c;
     Coefficients k;
-    // rigidArmSpring: the tangential oscillator per unit mass, and the mass of
-    // the contact point at the rigid arms (set per state)
+    // rigidArmSpring: the tangential oscillator per unit mass, and the mass
+    // springDrive gives it (set per state)
     double unitKt = 0, unitCt = 0;
     mutable double rigidMass = 0;
+
+    // pournin's spring and dashpot: the type pair's, or (rigidArmSpring) the
+    // oscillator per unit mass times the drive's mass
+    bool pournin() const { return c.rigidArmSpring || c.tangential == Tangential::Pournin; }
+    double kt() const { return c.rigidArmSpring ? rigidMass * unitKt : k.kt; }
+    double ct() const { return c.rigidArmSpring ? rigidMass * unitCt : k.ct; }
 
     double normalForce(const ContactKinematics& ck) const
     {
@@ -168,15 +174,8 @@ struct Law {
     // Returns the tangential force; `sliding` tells whether the cap binds.
     Vec3 tangentialForce(const Vec3& xi, const Vec3& vt, double Fn, bool& sliding) const
     {
-        if (c.rigidArmSpring) {
-            Vec3 f = -rigidMass * (unitKt * xi + unitCt * vt);
-            const double limit = frictionLimit(c.params.mu, Fn);
-            sliding = f.norm() > limit;
-            if (sliding) f *= limit / f.norm();
-            return f;
-        }
-        if (c.tangential == Tangential::Pournin) {
-            Vec3 f = -(k.kt * xi + k.ct * vt);
+        if (pournin()) {
+            Vec3 f = -(kt() * xi + ct() * vt);
             const double limit = frictionLimit(c.params.mu, Fn);
             sliding = f.norm() > limit;
             if (sliding) f *= limit / f.norm();
@@ -196,8 +195,7 @@ struct Law {
     // Spring length consistent with the force when the cap binds.
     Vec3 slidingSpring(const Vec3& f, const Vec3& vt) const
     {
-        if (c.rigidArmSpring) return -(f / rigidMass + unitCt * vt) / unitKt;
-        return c.tangential == Tangential::Pournin ? Vec3(-(f + k.ct * vt) / k.kt) : Vec3(-f / k.kt);
+        return pournin() ? Vec3(-(f + ct() * vt) / kt()) : Vec3(-f / k.kt);
     }
 };
 

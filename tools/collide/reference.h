@@ -33,10 +33,11 @@ struct Case {
     Tangential tangential = Tangential::Pournin;
     bool limitForce = false;
     bool exactRestitution = false;  // the model's exactRestitution setting
-    // exactCollision's continuous law: the spring follows the contact point at
-    // the rigid arms R and its force is the per-unit-mass oscillator times
-    // the mass that point has (viscoelastic::rigidArmMass); the spring does
-    // not slide where Fn passes through zero. The same law as exactCollision
+    // exactCollision's continuous law: the spring is driven by
+    // viscoelastic::springDrive's rate (the spins at the rigid arms R, the
+    // orbital part scaled by d / (R1 + R2)) and its force is the per-unit-mass
+    // oscillator times the drive's mass; the spring does not slide where Fn
+    // passes through zero. The same law as exactCollision
     // where friction never binds (the ODE caps at mu |Fn| at each instant,
     // exactCollision at mu times the mean |Fn| over a step). (The ODE only;
     // LIGGGHTS runs take the setting from their options.)
