@@ -21,8 +21,8 @@
 //    exit rate X'(s_e).
 // A contact between two steps is otherwise untouched: nine multiplications
 // and two comparisons per step more than the plain law (four of them for the
-// friction bound); the start and end need a few transcendental evaluations,
-// once per contact.
+// friction bound; five more with a pull, between two spheres); the start and
+// end need a few transcendental evaluations, once per contact.
 //
 // Per unit mass; the LIGGGHTS model multiplies by meff. State per contact:
 // its phase (fresh, touching, ended), kept in the contact history.
@@ -84,6 +84,11 @@ struct StepLaw {
     // aheadV v_{n-1/2}), and its mean over the step's half-step interval,
     // (u(-dt/2) - u(dt/2)) / dt = frictionX x_n + frictionV v_{n-1/2}.
     double aheadX = 0, aheadV = 0, frictionX = 0, frictionV = 0;
+    // The same with a pull: x'' = -F - pull, F the law's force. The motion of
+    // x + pull / k is then free, so each of the four above gains a term in
+    // the pull (endA, aheadA, frictionA), and the leapfrog-exact force one,
+    // forceA pull (kStep / k - 1: -3 % of the pull at tc/5).
+    double endA = 0, aheadA = 0, frictionA = 0, forceA = 0;
     // What ends the contact, one step on, must exceed endMargin x_n to go on:
     // a next sample on the surface within round-off would fall to or below
     // zero in the leapfrog, and the end step (its exit rate, its friction)
@@ -125,6 +130,10 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     const Motion backX = s.o.after({1.0, s.uX}, -h), backV = s.o.after({0.0, s.uV}, -h);
     s.aheadX = s.o.ending(aheadX, true), s.aheadV = s.o.ending(aheadV, true);
     s.frictionX = (backX.u - aheadX.u) / dt, s.frictionV = (backV.u - aheadV.u) / dt;
+    s.endA = (s.endX - (forceEnds ? k : 1.0)) / k;
+    s.aheadA = s.aheadX / k - 1.0;
+    s.frictionA = s.frictionX / k - 1.0;
+    s.forceA = s.kStep / k - 1.0;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.inverseDt = 1.0 / dt;
     return s;
@@ -215,24 +224,28 @@ double bracketedNewton(FS fs, double lo, double hi)
 // under way, uncorrected.
 constexpr double kFreshTouchSteps = 1.5;
 
-// The mean of |k x + c u| over [lo, hi] along the continuous motion `now`,
-// per step: |u(lo) - u(hi)| / dt, split where the force turns attractive
-// (limitForce off), which marks the contact `attractive` from then on;
-// [lo, hi] (under half a period) holds one zero of the force. Out of line:
-// the common step calls it only where the force turns.
+// The mean of |F| over [lo, hi] along the continuous motion `now` (of
+// x + pull / k, which is free; F = k x + c u - pull along it), per step:
+// |u(lo) - u(hi) - pull (hi - lo)| / dt, split where the force turns
+// attractive (limitForce off), which marks the contact `attractive` from then
+// on; [lo, hi] (under half a period) holds one zero of the force. Out of
+// line: the common step calls it only where the force turns.
 [[gnu::noinline]] inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo,
-                                             double hi)
+                                             double hi, double pull = 0.0)
 {
     const FreeOscillator& o = law.o;
     const Motion a = o.after(now, lo), b = o.after(now, hi);
-    const double meanForce = std::fabs(a.u - b.u) / law.dt;
-    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) < 0.0)) return meanForce;
+    const auto impulse = [&](const Motion& p, const Motion& q, double span) { return std::fabs(p.u - q.u - pull * span); };
+    const double meanForce = impulse(a, b, hi - lo) / law.dt;
+    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) - pull < 0.0))
+        return meanForce;
     state.phase = CollisionPhase::attractive;
-    if (!(o.ending(a, true) > 0.0)) return meanForce;
-    double zero = o.forceZeroFrom(now, lo);
-    if (!(zero <= hi)) zero = detail::bracketedRoot([&](double t) { return o.ending(o.after(now, t), true); }, lo, hi);
-    const double least = o.after(now, zero).u;  // the rate where the force turns
-    return (std::fabs(a.u - least) + std::fabs(least - b.u)) / law.dt;
+    if (!(o.ending(a, true) - pull > 0.0)) return meanForce;
+    double zero = pull == 0.0 ? o.forceZeroFrom(now, lo) : hi + 1.0;
+    if (!(zero <= hi))
+        zero = detail::bracketedRoot([&](double t) { return o.ending(o.after(now, t), true) - pull; }, lo, hi);
+    const Motion least = o.after(now, zero);  // where the force turns
+    return (impulse(a, least, zero - lo) + impulse(least, b, hi - zero)) / law.dt;
 }
 
 namespace detail {
@@ -251,7 +264,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // starts again after it ended, one created overlapping. Kept out of the
 // common step, which they would otherwise crowd with their transcendental
 // evaluations.
-[[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v)
+[[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v,
+                                                          double pull)
 {
     if (state.phase == CollisionPhase::held) return heldStep(law, x, v);
     const double dt = law.dt;
@@ -272,34 +286,44 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         }
         state.phase = CollisionPhase::fresh;  // approaching again: a new contact
     }
-    Motion now;  // the continuous motion at this step
+    // The continuous motion at this step, of x + shift: free (x'' = -F - pull).
+    const double shift = pull / law.o.k;
+    Motion now;
     if (state.phase == CollisionPhase::fresh && v > 0.0 && x <= kFreshTouchSteps * v * dt) {
-        r.sinceStart = x / v;
-        now = law.o.after({0.0, v}, r.sinceStart);
-        state.previousOffset = now.x - x;
+        // free flight before: x = vh s + pull s^2 / 2 with vh the rate
+        // LIGGGHTS gives, and the rate at touch vh + pull s
+        const double vh = v - 0.5 * dt * pull;
+        const double s = 2.0 * x / (vh + std::sqrt(vh * vh + 2.0 * pull * x));
+        r.sinceStart = s;
+        now = law.o.after({shift, vh + pull * s}, s);
+        state.previousOffset = now.x - shift - x;
     } else {
         // under way: the previous sample and this one define the motion
         const double vUsed = v - state.previousOffset * law.inverseDt;
         state.previousOffset = 0.0;
-        now = {x, law.uX * x + law.uV * vUsed};
+        now = {x + shift, law.uX * (x + shift) + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
     const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;  // this step's part of the contact
     const auto endingAndSlope = [&](double tau) {
         const Motion m = law.o.after(now, tau);
-        return law.forceEnds ? std::make_pair(law.o.ending(m, true), law.o.forceRate(m)) : std::make_pair(m.x, m.u);
+        return law.forceEnds ? std::make_pair(law.o.ending(m, true) - pull, law.o.forceRate(m))
+                             : std::make_pair(m.x - shift, m.u);
     };
+    // (the leapfrog moves the rate by -dt (force + pull))
     if (endingAndSlope(dt).first > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
-        const double next = law.o.after(now, dt).x;
-        r.force = (v - (next - x) / dt) / dt;
-        r.friction = frictionOver(law, state, now, from, 0.5 * dt);
+        const double next = law.o.after(now, dt).x - shift;
+        r.force = (v - (next - x) / dt) / dt - pull;
+        r.friction = frictionOver(law, state, now, from, 0.5 * dt, pull);
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
     const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     r.endsAfter = tau;
-    r.force = (v - law.o.after(now, tau).u) / dt;
-    r.friction = frictionOver(law, state, now, from, tau);
+    // the exit rate at tau: -(vi - vj).n there, which the pull lowers from
+    // the samples' rate over the step by pull (tau - dt / 2)
+    r.force = (v - law.o.after(now, tau).u - pull * (tau - 0.5 * dt)) / dt - pull;
+    r.friction = frictionOver(law, state, now, from, tau, pull);
     state.phase = CollisionPhase::ended;
     return r;
 }
@@ -307,27 +331,41 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 }  // namespace detail
 
 // One step of a contact under `exactCollision`: x the overlap at this step,
-// v the overlap rate at the half step before (positive while approaching).
-inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v)
+// v the overlap rate at the half step before (positive while approaching),
+// `pull` what else decelerates the overlap (x'' = -F - pull): between two
+// spheres the centrifugal |vt|^2 / d of their relative tangential motion
+// (vt of the centres, d their distance), which ends a fast oblique contact
+// earlier than the law alone; zero on a flat wall.
+inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v,
+                                        double pull = 0.0)
 {
+    // The rate LIGGGHTS gives is -(vi - vj).n with the normal of this step,
+    // the velocities of the half step before: with a turning normal that is
+    // the samples' rate (x_n - x_{n-1}) / dt less pull dt / 2.
+    v += 0.5 * law.dt * pull;
     // A contact under way that goes on past this step: the previous sample
-    // and this one define the motion. It costs nine products and two
-    // comparisons over the plain law.
+    // and this one define the motion. It costs nine products (five more with a
+    // pull) and two comparisons over the plain law.
     const bool attractive = state.phase == CollisionPhase::attractive;
     if (attractive || state.phase == CollisionPhase::touching) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
-        if (law.endX * x + law.endV * vUsed > law.endMargin * x) {
+        if (law.endX * x + law.endV * vUsed + law.endA * pull > law.endMargin * x) {
             state.previousOffset = 0.0;
             CollisionStep r;
-            r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed;
-            const double mean = law.frictionX * x + law.frictionV * vUsed;  // of the force over the step
+            r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
+            // of the force over the step
+            const double mean = law.frictionX * x + law.frictionV * vUsed + law.frictionA * pull;
             if (attractive) r.friction = -mean;
-            else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed >= 0.0) r.friction = mean;
-            else r.friction = frictionOver(law, state, {x, law.uX * x + law.uV * vUsed}, -0.5 * law.dt, 0.5 * law.dt);
+            else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed + law.aheadA * pull >= 0.0) r.friction = mean;
+            else {
+                const double shifted = x + pull / law.o.k;
+                r.friction = frictionOver(law, state, {shifted, law.uX * shifted + law.uV * vUsed}, -0.5 * law.dt,
+                                          0.5 * law.dt, pull);
+            }
             return r;
         }
     }
-    return detail::exactCollisionEnds(law, state, x, v);
+    return detail::exactCollisionEnds(law, state, x, v, pull);
 }
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)

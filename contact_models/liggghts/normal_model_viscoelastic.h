@@ -139,8 +139,16 @@ private:
         using namespace viscoelastic;
         double* const h = &sidata.contact_history[history_offset];
         CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1]};
-        const CollisionStep step =
-            exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state, sidata.deltan, -sidata.vn);
+        // Between two spheres their relative tangential motion pulls the
+        // centres apart at |vt|^2 / d; a flat wall's normal does not turn.
+        double pull = 0.0;
+        if (!sidata.is_wall) {
+            double vr2 = 0.0;
+            for (int d = 0; d < 3; ++d) vr2 += (sidata.v_i[d] - sidata.v_j[d]) * (sidata.v_i[d] - sidata.v_j[d]);
+            pull = std::max(vr2 - sidata.vn * sidata.vn, 0.0) * sidata.rinv;
+        }
+        const CollisionStep step = exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state,
+                                                      sidata.deltan, -sidata.vn, pull);
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]

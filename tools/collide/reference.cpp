@@ -114,11 +114,11 @@ BodyStates initialState(const Case& c, double gap)
     const double m1 = c.mass1(), m2 = c.mass2();
     const Vec3 vrel(-c.normalSpeed, c.tangentialSpeed, 0.0);
     if (c.isWall()) {
-        s.x1 = Vec3(c.radius1 + gap, 0.0, 0.0);
+        s.x1 = Vec3(c.radius1, 0.0, 0.0);
         s.v1 = vrel;
     } else {
         // centre of mass at rest at the origin
-        const double reach = c.radius1 + c.radius2 + gap;
+        const double reach = c.radius1 + c.radius2;
         s.x1 = Vec3(reach * m2 / (m1 + m2), 0.0, 0.0);
         s.x2 = Vec3(-reach * m1 / (m1 + m2), 0.0, 0.0);
         s.v1 = vrel * m2 / (m1 + m2);
@@ -126,6 +126,14 @@ BodyStates initialState(const Case& c, double gap)
         s.w2 = c.spin2;
     }
     s.w1 = c.spin1;
+    // Back along the free flight that ends in this touch: the bodies then
+    // touch with the line of centres along x and the requested normal and
+    // tangential speeds. (Placed `gap` apart along x instead, a pair drifts
+    // sideways by vt gap / vn before it touches: its normal turns by that
+    // over the reach, and at vt/vn 4 the approach slows to about half.)
+    const double before = gap / c.normalSpeed;
+    s.x1 -= before * s.v1;
+    s.x2 -= before * s.v2;
     return s;
 }
 
@@ -203,11 +211,19 @@ struct Law {
 
 Outcome integrateContactOde(const Case& c, int stepsPerTc)
 {
-    if (c.rigidArmSpring && c.limitForce)
-        throw std::invalid_argument("the reference's rigid-arm spring is exactCollision's law without limitForce");
     Law law{c, scaled(pourninUnitCoefficients(c.params), c.effectiveMass())};
     const Oscillator unit = pourninOscillator(c.params.tc, std::log(c.params.et));
     law.unitKt = unit.k, law.unitCt = unit.c;
+    if (c.rigidArmSpring && c.limitForce) {
+        // exactCollision's cut law: the oscillators solved so that the cut
+        // contact restitutes en and lasts tc, the spring as long as the force
+        // (with the force the cap mu Fn falls to zero, and the spring with it)
+        const auto o = viscoelastic::exactCollisionOscillators(c.params, true);
+        if (!o) throw std::invalid_argument("en below what a cut contact restitutes");
+        const double m = c.effectiveMass();
+        law.k.kn = m * o->normal.k, law.k.cn = m * o->normal.c;
+        law.unitKt = o->tangential.k, law.unitCt = o->tangential.c;
+    }
     const double m1 = c.mass1(), m2 = c.mass2();
     const double I1 = 0.4 * m1 * c.radius1 * c.radius1;
     const double I2 = 0.4 * m2 * c.radius2 * c.radius2;

@@ -93,7 +93,9 @@ Outcome outcomeOf(const Case& c, const BodyStates& before, const BodyStates& aft
 // relative motion never reaches the touching distance.
 BodyStates atTouch(const Case& c, const BodyStates& s);
 
-// Initial state: touching (zero overlap), approaching.
+// Initial state: touching (zero overlap), approaching, the line of centres
+// along x; with `gap`, the same bodies gap / normalSpeed earlier in their
+// free flight (they touch in exactly this state).
 BodyStates initialState(const Case& c, double gap = 0.0);
 
 // Continuous solution by RK4 with `stepsPerTc` steps per contact duration;
