@@ -248,6 +248,13 @@ TEST(DrumSteadyState, DetectsTheEndOfATransientAndRejectsTrends)
         trend.push_back(0.001 * i + noise(rng));  // drifts 0.2 against noise 0.002
     }
     EXPECT_LT(drum::steadyStart({flat}), 20);  // noise alone: little or nothing to cut
+    // the same with its last two samples equal: over the whole series the
+    // remaining variance at the next-to-last sample is zero, and MSER's
+    // optimum there called a steady series unsettled
+    std::vector<double> tail = flat;
+    tail.back() = tail[tail.size() - 2];
+    EXPECT_GE(drum::steadyStart({tail}), 0);
+    EXPECT_LT(drum::steadyStart({tail}), 20);
     EXPECT_EQ(drum::steadyStart({trend}), -1);
     const int start = drum::steadyStart({settling, flat});
     // by 5 decay times the transient (0.05 e^-5 = 3e-4) is below the noise

@@ -420,10 +420,10 @@ double stdErrorOfMean(const std::vector<double>& v, size_t from, size_t to)
     return std::max(naive, std::sqrt(bvar / (batches - 1) / batches));
 }
 
-// MSER (White 1997): the truncation d that minimises the squared standard
-// error of the remaining mean, sum((x_i - mean_d)^2) / (n - d)^2. Removing a
-// ramp or an overshoot lowers it; removing noise does not.
-int mserTruncation(const std::vector<double>& v)
+// MSER (White 1997): the truncation d <= last that minimises the squared
+// standard error of the remaining mean, sum((x_i - mean_d)^2) / (n - d)^2.
+// Removing a ramp or an overshoot lowers it; removing noise does not.
+int mserTruncation(const std::vector<double>& v, int last)
 {
     const int n = static_cast<int>(v.size());
     int best = 0;
@@ -439,7 +439,7 @@ int mserTruncation(const std::vector<double>& v)
         const double k = double(n - d);
         value[d] = std::max(0.0, s2 - s1 * s1 / k) / (k * k);
     }
-    for (int d = 0; d < n - 1; ++d)
+    for (int d = 0; d <= std::min(last, n - 2); ++d)
         if (value[d] < bestValue) bestValue = value[d], best = d;
     return best;
 }
@@ -452,9 +452,16 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
     for (const std::vector<double>& v : series) {
         const int n = static_cast<int>(v.size());
         if (n < 2 * minSamples) return -1;
-        const int d = mserTruncation(v);
-        // an optimum in the second half means the series never settled
-        if (d > n / 2) return -1;
+        // Searched over the first half only (White's bound): over the whole
+        // series the statistic of the last few samples can be near zero by
+        // chance (two equal samples give zero), and a steady series was
+        // "never settled" (the 7 rpm study's Hc, flat over 20 s to 0.1 mm,
+        // had its optimum at its next-to-last sample). An optimum in the
+        // last twentieth of that half means it was still falling there: the
+        // series has not settled.
+        const int last = n / 2;
+        const int d = mserTruncation(v, last);
+        if (d > last - std::max(1, n / 40)) return -1;
         start = std::max(start, d);
     }
     return start;
