@@ -151,7 +151,8 @@ struct CollisionState {
     CollisionPhase phase = CollisionPhase::fresh;
     // After the first step: the continuous overlap at that step minus the
     // actual one (the free flight into the contact felt no force); the
-    // second step takes it as its previous sample.
+    // second step takes it as its previous sample. After the end step: the
+    // time the free flight it set had left to part the bodies.
     double previousOffset = 0;
 };
 
@@ -279,8 +280,16 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // start the cycle again: ended, held, ended, thousands of times in a
         // settled column at en 0.95 and dt/tc 0.3, which gained 30-70 times
         // its kinetic energy; with no force while held, 150 times at 0.25).
-        if (!(v > 0.0)) {
-            if (x <= -v * law.heldAfter) return r;
+        // (the rate at this step: the pull turns it from the samples' rate;
+        // with the pull the overlap closes within 2 x / (c + sqrt(c^2 + 2 pull x))).
+        // A binary contact with a pull parts in the free flight its end step
+        // set (previousOffset: the time it had left); it is held only if it
+        // takes longer than half as much again, or than heldAfter.
+        const double closing = 0.5 * dt * pull - v;
+        state.previousOffset -= dt;
+        if (!(closing < 0.0)) {
+            const double bound = std::max(law.heldAfter, 1.5 * state.previousOffset);
+            if (2.0 * x <= bound * (closing + std::sqrt(closing * closing + 2.0 * pull * x))) return r;
             state.phase = CollisionPhase::held;
             return heldStep(law, x, v);
         }
@@ -293,7 +302,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // free flight before: x = vh s + pull s^2 / 2 with vh the rate
         // LIGGGHTS gives, and the rate at touch vh + pull s
         const double vh = v - 0.5 * dt * pull;
-        const double s = 2.0 * x / (vh + std::sqrt(vh * vh + 2.0 * pull * x));
+        const double s = x > 0.0 ? 2.0 * x / (vh + std::sqrt(vh * vh + 2.0 * pull * x)) : 0.0;
         r.sinceStart = s;
         now = law.o.after({shift, vh + pull * s}, s);
         state.previousOffset = now.x - shift - x;
@@ -320,9 +329,19 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // The contact ends within this step: leave at the continuous exit rate.
     const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     r.endsAfter = tau;
-    // the exit rate at tau: -(vi - vj).n there, which the pull lowers from
-    // the samples' rate over the step by pull (tau - dt / 2)
-    r.force = (v - law.o.after(now, tau).u - pull * (tau - 0.5 * dt)) / dt - pull;
+    // The kick along this step's normal gives the rate at this step, u+. In
+    // the free flight after it the pair keeps |v| and its angular momentum,
+    // so where the overlap x' > 0 closes the rate u' has u'^2 = u+^2 + 2 pull
+    // (x - x') (to x / d): the continuous contact separates with
+    // u_end^2 + 2 pull x_end (x_end: the overlap left at the end of the force,
+    // zero for the overlap's end), so u+^2 is that less 2 pull x. (If the
+    // pull alone parts the bodies faster than the law, u+ = 0.)
+    const Motion end = law.o.after(now, tau);
+    const double leave = std::sqrt(std::max(end.u * end.u + 2.0 * pull * (end.x - shift - x), 0.0));
+    r.force = (v - 0.5 * dt * pull + leave) / dt;
+    // the time this free flight takes to part the bodies
+    const double parting = leave + std::sqrt(leave * leave + 2.0 * pull * x);
+    state.previousOffset = parting > 0.0 ? 2.0 * x / parting : 0.0;
     r.friction = frictionOver(law, state, now, from, tau, pull);
     state.phase = CollisionPhase::ended;
     return r;

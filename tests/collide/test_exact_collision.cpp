@@ -255,21 +255,23 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
     // centres apart (vt^2 / d), which moves both en and the friction impulse
     // (Walton's relation is 4 % off at vn 0.1 m/s, vt/vn 4). Compared: en and
     // the change of the contact point's tangential velocity, du. Tolerance:
-    // the 0.5 % at tc/10 and 1 % at tc/5. Measured: at most 0.28 %
-    // (en) and 0.11 % (du) at tc/5, 0.05 % and 0.02 % at tc/10. Without the
-    // pull on the overlap (exactCollisionStep) one phase in six missed en by
-    // 7 % at tc/5 (vn 1 m/s): the end step never ran.
+    // the 0.5 % at tc/10 and 1 % up to tc/9. Measured: at most 0.08 %
+    // (en) and 0.16 % (du) at the coarsest steps, 0.02 % and 0.12 % at tc/10.
+    // Without the pull on the overlap (exactCollisionStep) one phase in six
+    // missed en by 7 % at tc/5 (vn 1 m/s): the end step never ran.
     unsigned seed = 400;
     struct Impact {
-        double vn, slope, mu;
+        double vn, slope, mu, en;
     };
     for (bool limitForce : {false, true})
-        for (const Impact& im : {Impact{0.1, 4.0, 0.3}, Impact{1.0, 2.0, 0.1}})
-            for (double ratio : {limitForce ? 5.6 : 5.0, 7.3, 10.0}) {
+        for (const Impact& im : {Impact{0.1, 4.0, 0.3, 0.5}, Impact{1.0, 2.0, 0.1, 0.5}, Impact{1.0, 2.0, 0.1, 0.2}})
+            // from the coarsest step the guard admits (en 0.2 with limitForce: tc/7.8)
+            for (double ratio : limitForce && im.en < 0.3 ? std::vector<double>{8.0, 9.0, 10.0}
+                                : std::vector<double>{im.en < 0.3 ? 6.0 : limitForce ? 5.6 : 5.0, 7.3, 10.0}) {
                 Case c;
                 c.geometry = Geometry::Pair;
                 c.limitForce = limitForce;
-                c.params = {1e-4, 0.5, 0.5, im.mu};
+                c.params = {1e-4, im.en, 0.5, im.mu};
                 c.normalSpeed = im.vn;
                 c.tangentialSpeed = im.slope * im.vn;
                 c.dt = c.params.tc / ratio;
@@ -281,7 +283,8 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
                 ASSERT_GT(ode.tangentialRestitution, -1.0 + 0.2) << "not sliding throughout";
                 const std::vector<double> phases = randomPhases(12, seed++);
                 const std::string tag = "slide_pair" + std::string(limitForce ? "_lf" : "") +
-                                        std::to_string(int(ratio * 10)) + "_" + std::to_string(int(im.vn * 10));
+                                        std::to_string(int(ratio * 10)) + "_" + std::to_string(int(im.vn * 10)) + "_" +
+                                        std::to_string(int(im.en * 10));
                 double worstDu = 0.0, worstEn = 0.0;
                 for (const Trajectory& t : runLiggghts(c, options(tag, "exactCollision on"), phases)) {
                     const Outcome o = measureTrajectory(c, t);
@@ -291,9 +294,9 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
                 const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
                 EXPECT_LT(worstDu, tolerance) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
                 EXPECT_LT(worstEn, tolerance) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
-                std::printf("sliding pair, limitForce %d, vn %.1f vt/vn %.0f mu %.1f, tc/dt %.1f: law en %.5f du %.5f m/s "
-                            "(Walton %.5f); worst en %.2e, du %.2e\n",
-                            limitForce, im.vn, im.slope, im.mu, ratio, ode.restitution, duLaw,
+                std::printf("sliding pair, limitForce %d, en %.1f vn %.1f vt/vn %.0f mu %.1f, tc/dt %.1f: law en %.5f du "
+                            "%.5f m/s (Walton %.5f); worst en %.2e, du %.2e\n",
+                            limitForce, im.en, im.vn, im.slope, im.mu, ratio, ode.restitution, duLaw,
                             3.5 * im.mu * (1.0 + c.params.en) * im.vn, worstEn, worstDu);
             }
 }

@@ -53,6 +53,34 @@ class Verdict(unittest.TestCase):
         self.assertEqual(steady.verdict({"done": 1.0}, 30.0, 30.0), "done")
 
 
+class NextLength(unittest.TestCase):
+    # 35 rpm: a revolution is 12/7 s; snapshots every 0.05 s; segments of 2 s
+    REV = 60.0 / 35.0
+
+    def row(self, settled, start, batches):
+        return {"settled": 1.0 if settled else 0.0, "steady_from_s": start if settled else float("nan"),
+                "batches": float(batches)}
+
+    def test_unsettled_runs_whole_segments(self):
+        self.assertEqual(steady.next_length(self.row(False, 0, 1), 4.0, 35, 2.0, 5, 0.05), 2.0)
+
+    def test_stops_where_the_fifth_revolution_fits_on_a_snapshot(self):
+        # settled at 1.3 s, at 9.0 s: five revolutions end at 1.3 + 5 x 12/7 = 9.871 s
+        length = steady.next_length(self.row(True, 1.3, 4), 9.0, 35, 2.0, 5, 0.05)
+        self.assertAlmostEqual(length, 0.9, places=9)  # 9.871 - 9.0 on the next snapshot
+        self.assertGreaterEqual(9.0 + length, 1.3 + 5 * self.REV)
+
+    def test_then_one_revolution_at_a_time(self):
+        # 5 batches done but the error not yet within target: the sixth revolution
+        length = steady.next_length(self.row(True, 1.3, 5), 1.3 + 5 * self.REV + 0.01, 35, 2.0, 5, 0.05)
+        self.assertGreaterEqual(1.3 + 5 * self.REV + 0.01 + length, 1.3 + 6 * self.REV)
+        self.assertLess(length, self.REV + 0.05)
+
+    def test_never_longer_than_a_segment(self):
+        # 7 rpm: a revolution is 8.6 s
+        self.assertEqual(steady.next_length(self.row(True, 3.0, 2), 20.0, 7, 2.0, 5, 0.05), 2.0)
+
+
 class Options(unittest.TestCase):
     def test_targets(self):
         self.assertEqual(steady.parse_targets(None), {"Hc": 3e-4, "angle": 0.3})
