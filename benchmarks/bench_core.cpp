@@ -98,10 +98,13 @@ void ContactPournin(benchmark::State& state)
 }
 
 // The same contacts under exactCollision: the normal step law and the
-// tangential one, with what LIGGGHTS' glue adds per step: the spring's drive
-// from the contact point's velocity and the spins, and the mass it sees
-// (springDrive; lever arms R - overlap/2). Its per-contact cost against
-// ContactPournin's is the price of exactCollision in the core.
+// tangential one, with what LIGGGHTS' glue adds per step: the pull on the
+// overlap between two spheres (|vt|^2 / d; the glue's |vi - vj|^2 - vn^2
+// times LIGGGHTS' 1/r, here the contact point's |vt|^2 times a constant
+// 1/d), the spring's drive from the contact point's velocity and the spins,
+// and the mass it sees (springDrive; lever arms R - overlap/2). Its
+// per-contact cost against ContactPournin's is the price of exactCollision in
+// the core.
 void ContactExactCollision(benchmark::State& state)
 {
     std::vector<Contact> c = contacts(kContacts);
@@ -113,7 +116,8 @@ void ContactExactCollision(benchmark::State& state)
         for (Contact& k : c) {
             CollisionState collision = k.collision;
             TangentialState s = fresh(k.state);
-            const CollisionStep step = exactCollisionStep(normal, collision, k.overlap, k.rate);
+            const CollisionStep step =
+                exactCollisionStep(normal, collision, k.overlap, k.rate, k.vt.squaredNorm() * (1.0 / (2.0 * r)));
             const double arm = r - 0.5 * k.overlap;
             const SpringDrive drive =
                 springDrive(k.vt, k.n, k.overlap, k.meff, 2.0 * k.meff, r, arm, k.spinI, 2.0 * k.meff, r, arm, k.spinJ);

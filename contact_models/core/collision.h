@@ -143,8 +143,9 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
 
 // `attractive`: still touching, past the zero of the force (limitForce off).
 // `held`: ended by the binary law but pressed on by other contacts (a
-// packing): the plain step law until the bodies part.
-enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3, held = 4 };
+// packing): the plain step law until the bodies part. `leaving`: ended, with
+// a second kick due (a pull that alone parts the bodies faster than the law).
+enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3, held = 4, leaving = 5 };
 
 // What a contact keeps between steps.
 struct CollisionState {
@@ -271,6 +272,17 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     if (state.phase == CollisionPhase::held) return heldStep(law, x, v);
     const double dt = law.dt;
     CollisionStep r;
+    if (state.phase == CollisionPhase::leaving) {
+        // the end step's second kick (below): previousOffset holds the
+        // parting rate squared; then as after one kick
+        const double target = state.previousOffset;
+        const double leave = std::sqrt(std::max(target - 2.0 * pull * x, 0.0));
+        r.force = (v - 0.5 * dt * pull + leave) / dt;
+        const double parting = leave + std::sqrt(leave * leave + 2.0 * pull * x);
+        state.previousOffset = parting > 0.0 ? 2.0 * x / parting : 0.0;
+        state.phase = CollisionPhase::ended;
+        return r;
+    }
     if (state.phase == CollisionPhase::ended) {
         // The continuous contact is over: no force while the overlap closes as
         // a binary contact's does after its end. One that would take longer
@@ -294,6 +306,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
             return heldStep(law, x, v);
         }
         state.phase = CollisionPhase::fresh;  // approaching again: a new contact
+        state.previousOffset = 0.0;           // (it held the parting time)
     }
     // The continuous motion at this step, of x + shift: free (x'' = -F - pull).
     const double shift = pull / law.o.k;
@@ -334,10 +347,22 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // so where the overlap x' > 0 closes the rate u' has u'^2 = u+^2 + 2 pull
     // (x - x') (to x / d): the continuous contact separates with
     // u_end^2 + 2 pull x_end (x_end: the overlap left at the end of the force,
-    // zero for the overlap's end), so u+^2 is that less 2 pull x. (If the
-    // pull alone parts the bodies faster than the law, u+ = 0.)
+    // zero for the overlap's end), so u+^2 is that less 2 pull x.
     const Motion end = law.o.after(now, tau);
-    const double leave = std::sqrt(std::max(end.u * end.u + 2.0 * pull * (end.x - shift - x), 0.0));
+    const double target = end.u * end.u + 2.0 * pull * (end.x - shift);
+    if (target < 2.0 * pull * x) {
+        // The pull alone parts the bodies from x faster than the law: no kick
+        // here can give that rate. Land the next sample where it does,
+        // target / (2 pull), and kick again there (phase `leaving`).
+        const double x1 = target / (2.0 * pull);
+        const double up = (x - x1 - 0.5 * pull * dt * dt) / dt;  // separating rate after this kick
+        r.force = (v - 0.5 * dt * pull + up) / dt;
+        state.previousOffset = target;
+        r.friction = frictionOver(law, state, now, from, tau, pull);
+        state.phase = CollisionPhase::leaving;
+        return r;
+    }
+    const double leave = std::sqrt(std::max(target - 2.0 * pull * x, 0.0));
     r.force = (v - 0.5 * dt * pull + leave) / dt;
     // the time this free flight takes to part the bodies
     const double parting = leave + std::sqrt(leave * leave + 2.0 * pull * x);
