@@ -11,9 +11,10 @@ start, by batch means over whole drum revolutions, have standard errors within -
 Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reaches --cap
 simulated seconds stops there, flagged. Then, for the speed: the time series and averages
 (`drum_metrics series`), a ParaView picture, the end state (compressed restart), the settings and
-the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, and with --commit the
-driver commits them. Rerunning the command continues from what is committed (and from the
-segments in post/NAME/ of a speed in progress); a committed speed with other settings stops it.
+the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the study's report
+(tools/drum/report.py) to docs/drum/NAME.md and .png, and with --commit the driver commits them.
+Rerunning the command continues from what is committed (and from the segments in post/NAME/ of a
+speed in progress); a committed speed with other settings stops it.
 
 A speed can outlast a working session (7 rpm: five revolutions are 43 s simulated, hours of the
 machine). Every --checkpoint-minutes of wall time (and with --checkpoint-now, at once) the speed
@@ -39,6 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 import chain  # noqa: E402
+import report  # noqa: E402
 import study  # noqa: E402
 
 WHO = "steady"
@@ -392,8 +394,10 @@ class Study:
                   "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
+        written = report.write(a.name, self.docs.parent)  # the study's report, with this speed in it
         if a.commit:
-            commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table)
+            commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table,
+                   *written)
         harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
                          f"{' and committed' if a.commit else ''}")
 

@@ -1,0 +1,71 @@
+"""The drum study's report (tools/drum/report.py) from a table with known answers: which steps
+between speeds rise, drop or do not change beyond twice the combined standard error, the thesis'
+findings beside them, the cost beside Table 3.2, and the chart."""
+
+import csv
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+import report  # noqa: E402
+
+COLUMNS = ["rpm", "settle_s", "average_s", "revolutions", "done", "cpu_hours", "Hh_m", "Hh_se_m", "Hd_m", "Hd_se_m",
+           "Hc_m", "Hc_se_m", "angle_deg", "angle_se_deg", "drum_force_N", "drum_force_se_N"]
+
+
+def row(rpm, hh, hh_se, cpu_hours=10.0):
+    return {"rpm": rpm, "settle_s": 2.0, "average_s": 40.0, "revolutions": 40.0 * rpm / 60.0, "done": True,
+            "cpu_hours": cpu_hours, "Hh_m": hh, "Hh_se_m": hh_se, "Hd_m": 0.04, "Hd_se_m": 0.001, "Hc_m": -0.1,
+            "Hc_se_m": 1e-4, "angle_deg": 25.0, "angle_se_deg": 0.1, "drum_force_N": 1e-3, "drum_force_se_N": 1e-5}
+
+
+class Report(unittest.TestCase):
+    def test_changes_count_beyond_two_combined_standard_errors(self):
+        self.assertEqual(report.change(1.0, 0.1, 1.3, 0.1), "rises")     # 0.3 > 2 x 0.141
+        self.assertEqual(report.change(1.0, 0.1, 1.25, 0.1), "no change")  # 0.25 < 0.283
+        self.assertEqual(report.change(1.3, 0.1, 1.0, 0.1), "drops")
+        self.assertEqual(report.change(1.0, float("nan"), 2.0, 0.1), "?")
+
+    def test_report_from_a_table(self):
+        with tempfile.TemporaryDirectory() as d:
+            rows = [row(7, 0.050, 0.001), row(21, 0.060, 0.001), row(28, 0.065, 0.004), row(14, 0.055, 0.001)]
+            with open(Path(d) / "study.csv", "w", newline="") as f:
+                w = csv.DictWriter(f, COLUMNS)
+                w.writeheader()
+                w.writerows(rows)
+            written = report.write("study", d)
+            text = (Path(d) / "study.md").read_text()
+            self.assertEqual([p.name for p in written], ["study.md", "study.png"])
+            self.assertGreater((Path(d) / "study.png").stat().st_size, 10000)
+            # sorted by speed; 21 -> 28: +5 mm against 2 sigma = 8.2 mm, where the thesis saw a drop
+            self.assertIn("| Hh | 7 → 14 | rises | rises | +5.00 mm | 2.83 mm |", text)
+            self.assertIn("| Hh | 14 → 21 | rises | rises |", text)
+            self.assertIn("| Hh | 21 → 28 | drops | no change | +5.00 mm | 8.25 mm |", text)
+            self.assertIn("| Hd | 7 → 14 |  | no change |", text)
+            # 7 rpm: 10 CPU hours for 42 s against 41.9 days x 16 cores for 62.9 s
+            rate = (10.0 / 42.0) / (41.9 * 24 * 16 / 62.9)
+            self.assertIn(f"| 7 | 42.0 | 10.0 | 62.9 | 41.9 | 16090 | {rate:.2g} |", text)
+            self.assertIn("| 7 | 50.0 ± 1.0 |", text)
+
+    def test_a_speed_without_error_bars(self):
+        # a capped speed that never settled has no standard errors (nan): shown without them
+        with tempfile.TemporaryDirectory() as d:
+            with open(Path(d) / "capped.csv", "w", newline="") as f:
+                w = csv.DictWriter(f, COLUMNS)
+                w.writeheader()
+                w.writerow({**row(21, 0.06, float("nan")), "done": False, **{c: float("nan") for c in COLUMNS if "_se_" in c}})
+            report.write("capped", d)
+            text = (Path(d) / "capped.md").read_text()
+            self.assertIn("| 21 | 60.0 | ", text)
+            self.assertIn("| capped |", text)
+
+    def test_no_table_no_report(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.assertEqual(report.write("none", d), [])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,159 @@
+#!/usr/bin/python3
+"""A drum study's report from its table alone (docs/drum/NAME.csv, which tools/drum/steady.py
+writes as speeds finish): docs/drum/NAME.md with each speed's averages and standard errors, the
+thesis' findings beside what the averages show (a change between two speeds counts where it
+exceeds twice the combined standard error), and the cost beside the thesis' Table 3.2; and
+docs/drum/NAME.png, the metrics against speed shaped like Fig. 3.2-3.4 (Hh, Hd, Hc) with the
+angle of repose, the drum force and the cost. steady.py rewrites both after each speed.
+
+  tools/drum/report.py --name study_thesis
+"""
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import harness  # noqa: E402
+from harness import charts  # noqa: E402
+
+# Table 3.2: real time [days] on one 16-core machine, timesteps, simulated time [s]
+THESIS_RUNS = {7: (41.9, 51170037, 62.9), 14: (16.5, 16001794, 19.6), 21: (21.1, 20675746, 25.4),
+               28: (25.2, 19864296, 24.4), 35: (20.1, 17137824, 21.0), 42: (16.6, 17965503, 22.1),
+               49: (21.7, 19442342, 23.9), 56: (20.0, 19377426, 23.8), 63: (16.5, 14979367, 18.4)}
+THESIS_CORES = 16
+# Section 3.4's reading of Fig. 3.2-3.4, step by step through the chain ("the head increases up
+# until 21 rpm, decreases suddenly at 28 rpm, and then increases from 35 rpm onwards"; Hd and Hc:
+# "the sudden decrease" at 28 rpm); steps it does not describe are absent.
+THESIS_FINDINGS = {
+    "Hh": {(7, 14): "rises", (14, 21): "rises", (21, 28): "drops", (35, 42): "rises", (42, 49): "rises",
+           (49, 56): "rises", (56, 63): "rises"},
+    "Hd": {(21, 28): "drops"},
+    "Hc": {(21, 28): "drops"},
+}
+# (key, column, standard-error column, scale, unit) of the metrics shown
+SHOWN = [("Hh", "Hh_m", "Hh_se_m", 1e3, "mm"), ("Hd", "Hd_m", "Hd_se_m", 1e3, "mm"), ("Hc", "Hc_m", "Hc_se_m", 1e3, "mm"),
+         ("angle", "angle_deg", "angle_se_deg", 1.0, "deg"), ("drum force", "drum_force_N", "drum_force_se_N", 1e3, "mN")]
+
+
+def change(a, sa, b, sb):
+    """'rises' / 'drops' where b - a exceeds twice the combined standard error, else 'no change'
+    ('?' without error bars)."""
+    sigma = math.hypot(sa, sb)
+    if not math.isfinite(sigma) or not math.isfinite(a) or not math.isfinite(b):
+        return "?"
+    if b - a > 2.0 * sigma:
+        return "rises"
+    if a - b > 2.0 * sigma:
+        return "drops"
+    return "no change"
+
+
+def thesis_cpu_hours(rpm):
+    days = THESIS_RUNS[rpm][0] if rpm in THESIS_RUNS else float("nan")
+    return days * 24.0 * THESIS_CORES
+
+
+def findings(rows):
+    """[(metric, from rpm, to rpm, thesis' reading or '', ours, difference, its 2-sigma)] between
+    consecutive speeds of the table."""
+    out = []
+    for (key, col, se, scale, unit) in SHOWN[:3]:
+        for r1, r2 in zip(rows, rows[1:]):
+            a, b = float(r1[col]), float(r2[col])
+            sa, sb = float(r1[se]), float(r2[se])
+            out.append((key, r1["rpm"], r2["rpm"], THESIS_FINDINGS[key].get((int(r1["rpm"]), int(r2["rpm"])), ""),
+                        change(a, sa, b, sb), (b - a) * scale, 2.0 * math.hypot(sa, sb) * scale, unit))
+    return out
+
+
+def markdown(name, rows):
+    def pm(r, col, se, scale, digits):
+        v, e = float(r[col]) * scale, float(r[se]) * scale
+        return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
+
+    lines = [f"# Drum study `{name}`", "",
+             f"Written by `tools/drum/report.py --name {name}` from `docs/drum/{name}.csv` "
+             "(one row per finished speed; `done`: the stop rule's target reached, else capped). "
+             "Averages over whole revolutions after the steady start, ± their standard error by "
+             "batch means (one batch per revolution).", "",
+             f"![metrics against speed]({name}.png)", "",
+             "| rpm | Hh [mm] | Hd [mm] | Hc [mm] | angle [deg] | drum force [mN] | settle [s] | averaged [s] "
+             "| revolutions | done |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['rpm']:g} | {pm(r, 'Hh_m', 'Hh_se_m', 1e3, 1)} | {pm(r, 'Hd_m', 'Hd_se_m', 1e3, 1)} | "
+                     f"{pm(r, 'Hc_m', 'Hc_se_m', 1e3, 2)} | {pm(r, 'angle_deg', 'angle_se_deg', 1.0, 2)} | "
+                     f"{pm(r, 'drum_force_N', 'drum_force_se_N', 1e3, 3)} | {float(r['settle_s']):.1f} | "
+                     f"{float(r['average_s']):.1f} | {float(r['revolutions']):.1f} | "
+                     f"{'yes' if r['done'] in (True, 1.0, 'True', 'true', '1') else 'capped'} |")
+    lines += ["", "## The thesis' findings beside these averages", "",
+              "A step between two speeds of the chain: the thesis' reading of Fig. 3.2-3.4 (blank where it "
+              "says nothing) and what the averages show (a change larger than twice the combined standard "
+              "error, else 'no change').", "",
+              "| metric | step [rpm] | thesis | here | difference | 2σ |", "|---|---|---|---|---|---|"]
+    for key, a, b, thesis, ours, diff, two_sigma, unit in findings(rows):
+        lines.append(f"| {key} | {a:g} → {b:g} | {thesis} | {ours} | {diff:+.2f} {unit} | {two_sigma:.2f} {unit} |")
+    lines += ["", "## Cost beside the thesis' Table 3.2", "",
+              f"CPU hours per speed: here on this project's machines (`cpu_hours`: LIGGGHTS' loop CPU time "
+              f"summed over ranks), the thesis' as real days times {THESIS_CORES} cores (YADE on one "
+              "16-core machine per speed).", "",
+              "| rpm | simulated [s] here | CPU hours here | thesis: simulated [s] | thesis: days | "
+              "thesis: CPU hours | here / thesis, per simulated s |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        rpm = int(r["rpm"])
+        simulated = float(r["settle_s"]) + float(r["average_s"])
+        thesis = THESIS_RUNS.get(rpm, (float("nan"),) * 3)
+        ours_rate = float(r["cpu_hours"]) / simulated if simulated > 0 else float("nan")
+        lines.append(f"| {rpm} | {simulated:.1f} | {float(r['cpu_hours']):.1f} | {thesis[2]:.1f} | {thesis[0]:.1f} | "
+                     f"{thesis_cpu_hours(rpm):.0f} | {ours_rate / (thesis_cpu_hours(rpm) / thesis[2]):.2g} |")
+    return "\n".join(lines) + "\n"
+
+
+def chart(name, rows, path):
+    fig, axes = charts.figure(2, 3, title=f"drum study {name}: averages against speed (± standard error)",
+                              size=(4.2, 3.2))
+    rpm = [float(r["rpm"]) for r in rows]
+    for ax, (key, col, se, scale, unit) in zip(axes, SHOWN):
+        errors = [float(r[se]) * scale for r in rows]  # none (nan) drawn as none
+        ax.errorbar(rpm, [float(r[col]) * scale for r in rows], yerr=[e if math.isfinite(e) else 0.0 for e in errors],
+                    marker="o", capsize=3)
+        ax.set_xlabel("drum speed [rpm]")
+        ax.set_ylabel(f"{key} [{unit}]")
+        ax.ticklabel_format(axis="y", useOffset=False)
+    ax = axes[5]
+    ax.semilogy(rpm, [float(r["cpu_hours"]) for r in rows], "o-", label="here")
+    ax.semilogy(rpm, [thesis_cpu_hours(int(r["rpm"])) for r in rows], "s--", label="thesis (Table 3.2)")
+    ax.set_xlabel("drum speed [rpm]")
+    ax.set_ylabel("CPU hours per speed")
+    ax.legend()
+    return charts.save(fig, path)
+
+
+def write(name, docs=None):
+    """Writes docs/drum/NAME.md and .png from docs/drum/NAME.csv; returns their paths (none
+    without the table)."""
+    docs = Path(docs) if docs else harness.REPO / "docs" / "drum"
+    table = docs / f"{name}.csv"
+    if not table.exists():
+        return []
+    rows = sorted(harness.read_csv(table), key=lambda r: float(r["rpm"]))
+    md, png = docs / f"{name}.md", docs / f"{name}.png"
+    md.write_text(markdown(name, rows))
+    chart(name, rows, png)
+    return [md, png]
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--name", default="study_thesis", help="docs/drum/NAME.csv (default: %(default)s)")
+    p.add_argument("--docs", default=None, help="directory of the table (default: docs/drum)")
+    args = p.parse_args(argv)
+    written = write(args.name, args.docs)
+    print("report: " + (", ".join(map(str, written)) if written else "no table yet"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
