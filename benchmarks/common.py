@@ -6,6 +6,7 @@ Not a driver: every benchmark file (cost.py, accuracy.py, ...) imports it."""
 
 import datetime
 import os
+import shlex
 import sys
 from pathlib import Path
 
@@ -160,5 +161,5 @@ def command(script, **options):
     for k, v in options.items():
         if v is None or v is False:
             continue
-        parts.append("--" + k.replace("_", "-") + ("" if v is True else f" {v}"))
+        parts.append("--" + k.replace("_", "-") + ("" if v is True else " " + shlex.quote(str(v))))
     return " ".join(parts)

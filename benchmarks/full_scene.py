@@ -49,6 +49,8 @@ def parser():
     p.add_argument("--time", type=float, default=0.02, help="simulated s per run (default: 0.02)")
     p.add_argument("--period", type=float, default=0.024, help="axial period of the state [m] (default: 0.024)")
     p.add_argument("--variants", default=",".join(VARIANTS), help="which variants (default: all)")
+    p.add_argument("--stem", default="full_scene",
+                   help="results OUT/STEM.csv and .json (default: %(default)s; full_scene_long: the long windows)")
     return p
 
 
@@ -75,10 +77,11 @@ def run(args):
              "nghost_max": lg.per_rank["Nghost"][1], "neighs_max": lg.per_rank["Neighs"][1],
              "neighs_min": lg.per_rank["Neighs"][2], "neighbor_builds": lg.neighbor_builds}
             for n in names for i, lg in enumerate(logs[n])]
-    harness.write_csv(Path(args.out) / "full_scene.csv", rows)
-    harness.write_json(Path(args.out) / "full_scene.json", {
+    harness.write_csv(Path(args.out) / f"{args.stem}.csv", rows)
+    harness.write_json(Path(args.out) / f"{args.stem}.json", {
         "restart": str(args.restart), "time_s": args.time, "rounds": args.rounds, "period_m": args.period,
-        "dt_s": dt, "tc_over_dt": RATIO, "cores": harness.machine()["cores"], "date": common.today()})
+        "dt_s": dt, "tc_over_dt": RATIO, "cores": harness.machine()["cores"], "date": common.today(),
+        "variants": args.variants, "stem": args.stem})
 
 
 def summary(rows):
@@ -106,8 +109,7 @@ def summary(rows):
     return table
 
 
-@common.section_of("full_scene", "full_scene")
-def section(res, m, rows):
+def render(res, m, rows):
     table = summary(rows)
     beads = int(rows[0]["beads"])
     return (
@@ -124,7 +126,19 @@ def section(res, m, rows):
                                    ("neighbour pairs per rank (max / min)", "neighs", None),
                                    ("neighbour builds", "builds", None)])
         + "\n" + verdict(table, rows)
-        + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"])))
+        + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"],
+                                   variants=None if m.get("variants", ",".join(VARIANTS)) == ",".join(VARIANTS)
+                                   else m["variants"],
+                                   stem=None if m.get("stem", "full_scene") == "full_scene" else m["stem"])))
+
+
+def section(res):
+    """Every lever in short runs; then, where measured, the study's settings in long windows."""
+    text = common.section_of("full_scene", "full_scene")(render)(res)
+    if res.has("full_scene_long.csv", "full_scene_long.json"):
+        text += ("\nLong windows: the study's settings (`fast`) against stock on them and on one rank, "
+                 "runs five times longer:\n\n" + common.section_of("full_scene_long", "full_scene")(render)(res))
+    return text
 
 
 def verdict(table, rows):
