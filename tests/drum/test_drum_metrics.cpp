@@ -691,6 +691,29 @@ TEST(DrumSteadyState, BatchMeansStandardErrorOfAnAR1SeriesIsHonest)
 // SE 0.15-0.16, 1.5 times the target: not done (the batch-means estimate of
 // about 21 batches has a relative sd of 0.16, so 1.5x is 3 sd away).
 // 41000 samples: 40000 averaged, predicted SE 0.05, half the target: done.
+// A trend of 16 standard deviations over the run under AR(1) noise (phi
+// 0.9) has not settled: MSER searched over the first half only passed 21 %
+// of such series (an independent review's simulation); over all but the last
+// tenth, none of its. And a series that starts with NaN (the shoulder of a
+// grid start at t = 0) is judged from its first finite sample: one NaN made
+// every MSER value NaN and the series "settled" at once.
+TEST(DrumSteadyState, TrendsUnderCorrelatedNoiseAndLeadingNaNsAreNotSettled)
+{
+    const double phi = 0.9, sd = 1.0 / std::sqrt(1.0 - phi * phi);
+    int settled = 0;
+    for (unsigned seed = 1; seed <= 40; ++seed) {
+        std::mt19937 rng(seed);
+        std::vector<double> x = ar1(1000, phi, 1.0, rng);
+        for (size_t t = 0; t < x.size(); ++t) x[t] += 16.0 * sd * double(t) / 1000.0;
+        settled += drum::steadyStart({x}) >= 0;
+        if (seed == 1) {
+            x[0] = NAN;
+            EXPECT_EQ(drum::steadyStart({x}), -1);
+        }
+    }
+    EXPECT_LE(settled, 2);
+}
+
 TEST(DrumSteadyState, StopRuleSettlesThenReachesItsTarget)
 {
     const double phi = 0.9, target = 0.1;

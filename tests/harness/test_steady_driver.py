@@ -54,31 +54,46 @@ class Verdict(unittest.TestCase):
 
 
 class NextLength(unittest.TestCase):
-    # 35 rpm: a revolution is 12/7 s; snapshots every 0.05 s; segments of 2 s
-    REV = 60.0 / 35.0
+    # drum_metrics counts a batch as round(revolution / snapshot) snapshots: at 35 rpm (a
+    # revolution 12/7 s) and snapshots every 0.05 s, 34; segments of 2 s
+    SNAP = 0.05
 
-    def row(self, settled, start, batches):
+    def row(self, settled, start, batches=0):
         return {"settled": 1.0 if settled else 0.0, "steady_from_s": start if settled else float("nan"),
                 "batches": float(batches)}
 
+    def snapshots_after(self, start, t_end, length):
+        return round((t_end + length - start) / self.SNAP) + 1
+
     def test_unsettled_runs_whole_segments(self):
-        self.assertEqual(steady.next_length(self.row(False, 0, 1), 4.0, 35, 2.0, 5, 0.05), 2.0)
+        self.assertEqual(steady.next_length(self.row(False, 0), 4.0, 35, 2.0, 5, self.SNAP), 2.0)
 
-    def test_stops_where_the_fifth_revolution_fits_on_a_snapshot(self):
-        # settled at 1.3 s, at 9.0 s: five revolutions end at 1.3 + 5 x 12/7 = 9.871 s
-        length = steady.next_length(self.row(True, 1.3, 4), 9.0, 35, 2.0, 5, 0.05)
-        self.assertAlmostEqual(length, 0.9, places=9)  # 9.871 - 9.0 on the next snapshot
-        self.assertGreaterEqual(9.0 + length, 1.3 + 5 * self.REV)
+    def test_stops_where_the_fifth_batch_fits(self):
+        # settled at 1.3 s, at 9.0 s: 155 snapshots, 4 batches of 34; the fifth needs 15 more
+        length = steady.next_length(self.row(True, 1.3), 9.0, 35, 2.0, 5, self.SNAP)
+        self.assertAlmostEqual(length, 15 * self.SNAP, places=9)
+        self.assertEqual(self.snapshots_after(1.3, 9.0, length), 5 * 34)
 
-    def test_then_one_revolution_at_a_time(self):
-        # 5 batches done but the error not yet within target: the sixth revolution
-        length = steady.next_length(self.row(True, 1.3, 5), 1.3 + 5 * self.REV + 0.01, 35, 2.0, 5, 0.05)
-        self.assertGreaterEqual(1.3 + 5 * self.REV + 0.01 + length, 1.3 + 6 * self.REV)
-        self.assertLess(length, self.REV + 0.05)
+    def test_then_one_batch_at_a_time(self):
+        t_end = 1.3 + 5 * 34 * self.SNAP  # 171 snapshots: 5 batches
+        length = steady.next_length(self.row(True, 1.3), t_end, 35, 2.0, 5, self.SNAP)
+        self.assertEqual(self.snapshots_after(1.3, t_end, length), 6 * 34)
+
+    def test_batches_as_drum_metrics_rounds_them(self):
+        # 42 rpm: a revolution is 28.6 snapshots, counted as 29; 144 snapshots need one more
+        # (by whole revolutions the fifth seemed to fit already)
+        t_end = 0.5 + 143 * self.SNAP
+        self.assertAlmostEqual(steady.next_length(self.row(True, 0.5), t_end, 42, 2.0, 5, self.SNAP), self.SNAP)
+
+    def test_at_least_one_snapshot(self):
+        for rpm in (14, 28, 42, 58, 63):
+            for k in range(400):
+                length = steady.next_length(self.row(True, 0.05), 0.05 + k * self.SNAP, rpm, 2.0, 5, self.SNAP)
+                self.assertGreaterEqual(length, self.SNAP - 1e-12, (rpm, k))
 
     def test_never_longer_than_a_segment(self):
         # 7 rpm: a revolution is 8.6 s
-        self.assertEqual(steady.next_length(self.row(True, 3.0, 2), 20.0, 7, 2.0, 5, 0.05), 2.0)
+        self.assertEqual(steady.next_length(self.row(True, 3.0), 20.0, 7, 2.0, 5, self.SNAP), 2.0)
 
 
 class Options(unittest.TestCase):

@@ -95,10 +95,10 @@ struct Difference {
 Difference compare(const Bed& a, const Bed& b);
 
 // Steady state: the sample index from which every metric has settled, by
-// the MSER rule (White 1997) applied to each series, its truncation searched
-// over the first half; -1 when a series' optimum lies at the end of that
-// half (the statistic still falling: it never settled) or it has fewer than
-// 2 minSamples samples.
+// the MSER rule (White 1997) applied to each series from its first finite
+// sample, its truncation searched over all but the last tenth; -1 when a
+// series' optimum lies in its second half (it never settled) or it has fewer
+// than 2 minSamples samples.
 int steadyStart(const std::vector<std::vector<double>>& series, int minSamples = 10);
 
 struct Average {

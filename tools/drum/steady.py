@@ -4,8 +4,8 @@
 The chain (section 3.4.2): the slowest speed starts from the grid (or --start-state), each
 faster one from the committed end state of the one before. A speed runs in segments of --segment simulated seconds
 (restart-chained, so an interrupted speed resumes from its last segment; once settled, a segment
-ends where the next verdict can come: where --min-batches revolutions, then one more, fit after
-the steady start); after each segment
+ends where --min-batches revolutions, then one more, fit after the steady start: the earliest the
+verdict can be 'done'); after each segment
 `drum_metrics steady` decides: the metrics have settled (MSER) and the averages after the steady
 start, by batch means over whole drum revolutions, have standard errors within --target (default
 Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reaches --cap
@@ -105,19 +105,18 @@ def plan(speeds, committed, settings, force=False, first_state=None):
 
 
 def next_length(row, t_end, rpm, segment, min_batches, snapshot):
-    """Simulated seconds of the next segment: `segment`, or less where the verdict can come
-    sooner. Batches are whole revolutions counted back from the end (`t_end`, series time), so
-    once settled the verdict can change when one more batch fits (and not before min_batches):
-    the segment ends there, on a whole snapshot. `row`: the last `drum_metrics steady` row."""
+    """Simulated seconds of the next segment: `segment`, or less where the minimum of batches can
+    be met sooner. `drum_metrics steady` counts batches of round(revolution / snapshot) snapshots
+    back from the end of the series (`t_end`), from the steady start on; once settled, the
+    segment ends where min_batches of them fit, then one more (the earliest a verdict can be
+    'done'), and is at least one snapshot. `row`: the last `drum_metrics steady` row."""
     start = float(row["steady_from_s"])
     if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
         return segment
-    batches = row["batches"]
-    want = max(min_batches, (int(batches) if math.isfinite(float(batches)) else 0) + 1)
-    needed = start + want * revolution(rpm) - t_end
-    if needed <= 0.0:
-        return segment
-    return min(segment, math.ceil(needed / snapshot - 1e-9) * snapshot)
+    batch = max(1, round(revolution(rpm) / snapshot))
+    have = round((t_end - start) / snapshot) + 1  # snapshots from the steady start on
+    want = max(min_batches, have // batch + 1)
+    return min(segment, max(want * batch - have, 1) * snapshot)
 
 
 def verdict(row, simulated, cap):
@@ -174,6 +173,7 @@ class Study:
         self.docs = Path(args.docs).resolve() / args.name
         self.settings = settings_of(args)
         self.dt = float(args.variables.get("dt") or study.drum_default("dt"))
+        self.dumpdt = float(args.variables.get("dumpdt") or study.drum_default("dumpdt"))
 
     def first_state(self):
         """--start-state unpacked into post/ (or None: the grid) and its hash (of the file as given)."""
@@ -337,10 +337,10 @@ class Study:
             seconds = a.segment + (a.settle if grid else 0.0)
             if done["segments"] > 0:
                 # no longer than the next verdict needs (see next_length)
-                snaps = [step for step, _ in harness.snapshots(self.prefix(rpm))]
-                if len(snaps) >= 2:
-                    seconds = next_length(row or self.check(rpm), snaps[-1] * self.dt, rpm, a.segment,
-                                          a.min_batches, (snaps[-1] - snaps[-2]) * self.dt)
+                snaps = harness.snapshots(self.prefix(rpm))
+                if snaps:
+                    seconds = next_length(row or self.check(rpm), snaps[-1][0] * self.dt, rpm, a.segment,
+                                          a.min_batches, self.dumpdt)
             log = self.segment(rpm, k, None if grid else Path(done["state"] or start), seconds)
             state = self.work / f"{rpm}rpm_seg{k}.restart"
             shutil.copyfile(self.work / f"{rpm}rpm.restart", state)
