@@ -170,7 +170,7 @@ TEST(ExactCollision, ReferenceRigidArmSpringOnAPairMissesEtOnlyByTheCentrifugalS
     // contact ends earlier than tc and cuts the tangential oscillator short:
     // et rises by about K (vt^2 / vn) tc / R, measured K = 0.15 (0.1-3 m/s,
     // vt/vn 0.2 and 1; vt the relative tangential speed of the centres;
-    // equal spheres: with R2 = R1/3, denser, K reached 0.23 in a review).
+    // equal spheres: with R2 = R1/3, denser, K reached 0.23).
     // Bound: K = 0.25, plus the ODE's 3e-5. The spring driven at the plain
     // contact point (no orbital factor) is off by 1.6 % at vn 1 m/s, vt/vn
     // 0.2, 24 times this bound.

@@ -462,9 +462,9 @@ int steadyStart(const std::vector<std::vector<double>>& series, int minSamples)
         // samples give zero), and a steady series was "never settled" (the
         // 7 rpm study's Hc, flat over 20 s to 0.1 mm, had its optimum at its
         // next-to-last sample). An optimum in the second half means the series
-        // has not settled (White 1997). (Searching the first half only, as
-        // tried, let an independent review's linear trends of 8 and 16
-        // standard deviations pass as settled in 62 and 21 % of series.)
+        // has not settled (White 1997). (Searching the first half only let
+        // linear trends of 16 standard deviations under AR(1) noise pass as
+        // settled in 11 of 40 series: TrendsUnderCorrelatedNoise...)
         const int d = mserTruncation(v, n - 1 - std::max(1, n / 10));
         if (d > n / 2) return -1;
         start = std::max(start, first + d);
