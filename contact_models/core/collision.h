@@ -252,6 +252,31 @@ constexpr double kFreshTouchSteps = 1.5;
 
 namespace detail {
 
+// Free flight under the pull: the time to cover overlap x at rate c at its
+// near end (c + pull t at time t), x = c t + pull t^2 / 2 -- the time since
+// first touch at a contact's first step, the time an ended contact takes to
+// part. 0 at x = 0; infinite if nothing closes it.
+inline double freeFlightTime(double x, double c, double pull)
+{
+    if (!(x > 0.0)) return 0.0;
+    const double closing = c + std::sqrt(c * c + 2.0 * pull * x);
+    return closing > 0.0 ? 2.0 * x / closing : HUGE_VAL;
+}
+
+// The end kick (on this step's normal) after which the free flight parts the
+// bodies at rate sqrt(target): with |v| and the pair's angular momentum kept,
+// where the overlap x closes the rate has grown to sqrt(u+^2 + 2 pull x).
+// The contact is then `ended`, keeping the time that flight takes to part.
+inline void partingKick(const StepLaw& law, CollisionState& state, double x, double v, double pull, double target,
+                        CollisionStep& r)
+{
+    const double leave = std::sqrt(std::max(target - 2.0 * pull * x, 0.0));
+    r.force = (v - 0.5 * law.dt * pull + leave) / law.dt;
+    const double parting = freeFlightTime(x, leave, pull);
+    state.previousOffset = std::isfinite(parting) ? parting : 0.0;
+    state.phase = CollisionPhase::ended;
+}
+
 // A held contact's step: the plain step law through this sample and the one
 // before, its friction bound the law's mean force over the step.
 inline CollisionStep heldStep(const StepLaw& law, double x, double v)
@@ -274,13 +299,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     CollisionStep r;
     if (state.phase == CollisionPhase::leaving) {
         // the end step's second kick (below): previousOffset holds the
-        // parting rate squared; then as after one kick
-        const double target = state.previousOffset;
-        const double leave = std::sqrt(std::max(target - 2.0 * pull * x, 0.0));
-        r.force = (v - 0.5 * dt * pull + leave) / dt;
-        const double parting = leave + std::sqrt(leave * leave + 2.0 * pull * x);
-        state.previousOffset = parting > 0.0 ? 2.0 * x / parting : 0.0;
-        state.phase = CollisionPhase::ended;
+        // parting rate squared
+        partingKick(law, state, x, v, pull, state.previousOffset, r);
         return r;
     }
     if (state.phase == CollisionPhase::ended) {
@@ -292,16 +312,14 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // start the cycle again: ended, held, ended, thousands of times in a
         // settled column at en 0.95 and dt/tc 0.3, which gained 30-70 times
         // its kinetic energy; with no force while held, 150 times at 0.25).
-        // (the rate at this step: the pull turns it from the samples' rate;
-        // with the pull the overlap closes within 2 x / (c + sqrt(c^2 + 2 pull x))).
+        // (the rate at this step: the pull turns it from the samples' rate.)
         // A binary contact with a pull parts in the free flight its end step
         // set (previousOffset: the time it had left); it is held only if it
         // takes longer than half as much again, or than heldAfter.
         const double closing = 0.5 * dt * pull - v;
         state.previousOffset -= dt;
         if (!(closing < 0.0)) {
-            const double bound = std::max(law.heldAfter, 1.5 * state.previousOffset);
-            if (2.0 * x <= bound * (closing + std::sqrt(closing * closing + 2.0 * pull * x))) return r;
+            if (freeFlightTime(x, closing, pull) <= std::max(law.heldAfter, 1.5 * state.previousOffset)) return r;
             state.phase = CollisionPhase::held;
             return heldStep(law, x, v);
         }
@@ -315,7 +333,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // free flight before: x = vh s + pull s^2 / 2 with vh the rate
         // LIGGGHTS gives, and the rate at touch vh + pull s
         const double vh = v - 0.5 * dt * pull;
-        const double s = x > 0.0 ? 2.0 * x / (vh + std::sqrt(vh * vh + 2.0 * pull * x)) : 0.0;
+        const double s = freeFlightTime(x, vh, pull);
         r.sinceStart = s;
         now = law.o.after({shift, vh + pull * s}, s);
         state.previousOffset = now.x - shift - x;
@@ -342,12 +360,10 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // The contact ends within this step: leave at the continuous exit rate.
     const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
     r.endsAfter = tau;
-    // The kick along this step's normal gives the rate at this step, u+. In
-    // the free flight after it the pair keeps |v| and its angular momentum,
-    // so where the overlap x' > 0 closes the rate u' has u'^2 = u+^2 + 2 pull
-    // (x - x') (to x / d): the continuous contact separates with
-    // u_end^2 + 2 pull x_end (x_end: the overlap left at the end of the force,
-    // zero for the overlap's end), so u+^2 is that less 2 pull x.
+    // The continuous contact parts with u_end^2 + 2 pull x_end (x_end: the
+    // overlap left at the end of the force, zero for the overlap's end; to
+    // x / d): the kick gives that rate where the overlap closes.
+    r.friction = frictionOver(law, state, now, from, tau, pull);
     const Motion end = law.o.after(now, tau);
     const double target = end.u * end.u + 2.0 * pull * (end.x - shift);
     if (target < 2.0 * pull * x) {
@@ -358,17 +374,10 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         const double up = (x - x1 - 0.5 * pull * dt * dt) / dt;  // separating rate after this kick
         r.force = (v - 0.5 * dt * pull + up) / dt;
         state.previousOffset = target;
-        r.friction = frictionOver(law, state, now, from, tau, pull);
         state.phase = CollisionPhase::leaving;
         return r;
     }
-    const double leave = std::sqrt(std::max(target - 2.0 * pull * x, 0.0));
-    r.force = (v - 0.5 * dt * pull + leave) / dt;
-    // the time this free flight takes to part the bodies
-    const double parting = leave + std::sqrt(leave * leave + 2.0 * pull * x);
-    state.previousOffset = parting > 0.0 ? 2.0 * x / parting : 0.0;
-    r.friction = frictionOver(law, state, now, from, tau, pull);
-    state.phase = CollisionPhase::ended;
+    partingKick(law, state, x, v, pull, target, r);
     return r;
 }
 
