@@ -5,9 +5,15 @@ collision exact), worst over 256 start phases, integer and non-integer tc/dt (`c
 single`: the integrator's recurrence, which LIGGGHTS follows to round-off, tests/collide);
 and what exactCollision costs in LIGGGHTS: the dense column (inputs/column.in, tangential
 pournin; beads dropped from a lattice: collisions and lasting contacts) with exactRestitution and
-with exactCollision, interleaved rounds, loop-time ratio.
+with exactCollision, interleaved rounds, loop-time ratio; and, as a measure no other job on the
+machine can move, the instructions each run executes (valgrind's callgrind: the whole run and the pair
+force computation, LIGGGHTS' loop over contacts with the contact model inlined in it).
 Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json."""
 
+import argparse
+import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -31,7 +37,36 @@ def parser():
     p.add_argument("--ratios", default=RATIOS, help="tc/dt (default: %(default)s)")
     p.add_argument("--phases", type=int, default=256, help="start phases per collision (default: %(default)s)")
     p.add_argument("--cost-time", type=float, default=0.1, help="simulated s per column run (default: %(default)s)")
+    p.add_argument("--instructions", action=argparse.BooleanOptionalAction, default=True,
+                   help="also count instructions under callgrind (needs valgrind; about 4 min per mode; default: on)")
     return p
+
+
+def column_variables(mode, time, name):
+    return {"tangential": "pournin", "exact": "on" if mode == "exactRestitution" else "off",
+            "collision": "on" if mode == "exactCollision" else "off", "time": time, "name": name}
+
+
+def instructions(mode, time):
+    """The column run of `mode` under callgrind: instructions of the whole run and of the pair force
+    computation (inclusive: the contact model runs inside it)."""
+    valgrind = shutil.which("valgrind")
+    if not valgrind:
+        raise harness.RunFailed("--instructions needs valgrind (apt-get install valgrind), or pass --no-instructions")
+    counts = harness.post(f"collision/{mode}.callgrind")
+    cmd = [valgrind, "--tool=callgrind", f"--callgrind-out-file={counts}", harness.tool_path("liggghts"),
+           "-in", "inputs/column.in"]
+    for k, v in column_variables(mode, time, f"collision/{mode}_callgrind").items():
+        cmd += ["-var", k, str(v)]
+    with open(harness.post(f"collision/{mode}_callgrind.log"), "w") as log:
+        subprocess.run(cmd, cwd=harness.REPO, stdout=log, stderr=subprocess.STDOUT, check=True)
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(counts)], capture_output=True, text=True,
+                          check=True).stdout
+    number = lambda line: int(line.split()[0].replace(",", ""))  # noqa: E731
+    total = next(number(line) for line in text.splitlines() if "PROGRAM TOTALS" in line)
+    pair = next(number(line) for line in text.splitlines()
+                if "PairStyles::Granular<" in line and "::compute_force(" in line)
+    return {"total": total, "pair": pair}
 
 
 def run(args):
@@ -47,16 +82,21 @@ def run(args):
 
     # cost: the settled column is what a dense flow asks of a contact; both with tangential pournin
     variants = {mode: (lambda mode=mode: harness.liggghts(
-        "inputs/column.in", {"tangential": "pournin", "exact": "on" if mode == "exactRestitution" else "off",
-                             "collision": "on" if mode == "exactCollision" else "off", "time": args.cost_time,
-                             "name": f"collision/{mode}"},
+        "inputs/column.in", column_variables(mode, args.cost_time, f"collision/{mode}"),
         log=harness.post(f"collision/{mode}.log")).loop_time) for mode in ("exactRestitution", "exactCollision")}
     times = harness.interleaved(variants, args.rounds, progress=lambda text: harness.say("collision", text))
     rounds = [{"round": k + 1, **{mode: times[mode][k] for mode in times}} for k in range(args.rounds)]
     harness.write_csv(out / "collision_cost.csv", rounds)
+    counts = None
+    if args.instructions:
+        counts = {}
+        for mode in ("exactRestitution", "exactCollision"):
+            harness.say("collision", f"{mode} under callgrind ...")
+            counts[mode] = instructions(mode, args.cost_time)
     harness.write_json(out / "collision.json", {
         "ratios": args.ratios, "phases": args.phases, "cost_time_s": args.cost_time, "rounds": args.rounds,
         "ratio": harness.median_ratio([r["exactCollision"] for r in rounds], [r["exactRestitution"] for r in rounds]),
+        "instructions": counts,
         "date": common.today()})
 
 
@@ -75,6 +115,16 @@ def chart(rows, path):
                title=f"{label}, limitForce {'on' if lf else 'off'}", ylim=(1e-16, 2))
     axes[0].legend(fontsize=7)
     harness.save(fig, path)
+
+
+def instruction_text(counts):
+    if not counts:
+        return ""
+    r, c = counts["exactRestitution"], counts["exactCollision"]
+    return ("Instructions executed (callgrind; the same column run, once per mode: a count no other job on the "
+            f"machine moves):\nwhole run {c['total'] / r['total']:.3f}, pair force computation (every contact's "
+            f"step, LIGGGHTS' loop included) **{c['pair'] / r['pair']:.3f}** "
+            f"({c['pair'] / 1e9:.2f} against {r['pair'] / 1e9:.2f} billion).\n")
 
 
 @common.section_of("collision", "collision")
@@ -101,7 +151,8 @@ def section(res, m, rows):
         + f"\nCost in LIGGGHTS: the dense column (2009 beads dropped from a lattice onto a floor: collisions and lasting contacts), {m['rounds']} interleaved rounds of {m['cost_time_s']:g} s "
         f"(tangential pournin):\nexactCollision / exactRestitution loop time, median of the per-round ratios: "
         f"**{m['ratio']:.3f}** (per round: "
-        + ", ".join(f"{r['exactCollision'] / r['exactRestitution']:.3f}" for r in cost) + ").\n\n"
+        + ", ".join(f"{r['exactCollision'] / r['exactRestitution']:.3f}" for r in cost) + ").\n"
+        + instruction_text(m.get("instructions")) + "\n"
         + common.sh(common.command("collision.py", rounds=m["rounds"] if m["rounds"] != 5 else None)))
 
 

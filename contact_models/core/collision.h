@@ -50,12 +50,18 @@ struct FreeOscillator {
     FreeOscillator() = default;
     FreeOscillator(double k_, double c_) : k(k_), c(c_), lambda(0.5 * c_), omega(std::sqrt(k_ - 0.25 * c_ * c_)) {}
 
-    // The motion tau later (tau may be negative).
-    Motion after(Motion m, double tau) const
+    // The flow over tau (tau may be negative): its transcendental part, shared
+    // by every motion taken over the same tau.
+    struct Flow {
+        double e, co, si;  // e^(-lambda tau), cos(omega tau), sin(omega tau) / omega
+    };
+    Flow flow(double tau) const { return {std::exp(-lambda * tau), std::cos(omega * tau), std::sin(omega * tau) / omega}; }
+    Motion after(Motion m, const Flow& f) const
     {
-        const double e = std::exp(-lambda * tau), co = std::cos(omega * tau), si = std::sin(omega * tau) / omega;
-        return {e * (m.x * co + (m.u + lambda * m.x) * si), e * (m.u * co - (lambda * m.u + k * m.x) * si)};
+        return {f.e * (m.x * f.co + (m.u + lambda * m.x) * f.si), f.e * (m.u * f.co - (lambda * m.u + k * m.x) * f.si)};
     }
+    // The motion tau later.
+    Motion after(Motion m, double tau) const { return after(m, flow(tau)); }
     // What ends a contact: the overlap, or with limitForce the force k x + c u.
     double ending(Motion m, bool force) const { return force ? k * m.x + c * m.u : m.x; }
     // The rate of the force k x + c u along the motion (x'' = -k x - c u).
@@ -192,14 +198,14 @@ double bracketedRoot(F f, double lo, double hi)
     return 0.5 * (lo + hi);
 }
 
-// The same for f with its slope: (f, f') = fs(tau). Newton steps kept inside
-// the bracket (a few per contact end), bisection when one leaves it.
+// The same for f with its slope: (f, f') = fs(tau), given f(lo) and a first
+// guess (the secant's, from f at both ends, saves a step or two). Newton
+// steps kept inside the bracket, bisection when one leaves it.
 template <class FS>
-double bracketedNewton(FS fs, double lo, double hi)
+double bracketedNewton(FS fs, double lo, double hi, double flo, double t)
 {
-    double flo = fs(lo).first;
     if (flo == 0.0) return lo;
-    double t = 0.5 * (lo + hi);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
     for (int it = 0; it < 60; ++it) {
         const auto [f, df] = fs(t);
         if (f == 0.0) return t;
@@ -230,24 +236,37 @@ constexpr double kFreshTouchSteps = 1.5;
 // x + pull / k, which is free; F = k x + c u - pull along it), per step:
 // |u(lo) - u(hi) - pull (hi - lo)| / dt, split where the force turns
 // attractive (limitForce off), which marks the contact `attractive` from then
-// on; [lo, hi] (under half a period) holds one zero of the force. Out of
-// line: the common step calls it only where the force turns.
-[[gnu::noinline]] inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo,
-                                             double hi, double pull = 0.0)
+// on; [lo, hi] (under half a period) holds one zero of the force. a and b:
+// the motion at lo and hi (the caller often has them).
+inline double frictionBetween(const StepLaw& law, CollisionState& state, const Motion& now, const Motion& a,
+                              const Motion& b, double lo, double hi, double pull)
 {
     const FreeOscillator& o = law.o;
-    const Motion a = o.after(now, lo), b = o.after(now, hi);
     const auto impulse = [&](const Motion& p, const Motion& q, double span) { return std::fabs(p.u - q.u - pull * span); };
     const double meanForce = impulse(a, b, hi - lo) / law.dt;
     if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) - pull < 0.0))
         return meanForce;
     state.phase = CollisionPhase::attractive;
-    if (!(o.ending(a, true) - pull > 0.0)) return meanForce;
+    const double fa = o.ending(a, true) - pull, fb = o.ending(b, true) - pull;
+    if (!(fa > 0.0)) return meanForce;
     double zero = pull == 0.0 ? o.forceZeroFrom(now, lo) : hi + 1.0;
-    if (!(zero <= hi))
-        zero = detail::bracketedRoot([&](double t) { return o.ending(o.after(now, t), true) - pull; }, lo, hi);
+    if (!(zero <= hi)) {
+        const auto forceAndRate = [&](double t) {
+            const Motion m = o.after(now, t);
+            return std::make_pair(o.ending(m, true) - pull, o.forceRate(m));
+        };
+        zero = detail::bracketedNewton(forceAndRate, lo, hi, fa, lo + (hi - lo) * fa / (fa - fb));
+    }
     const Motion least = o.after(now, zero);  // where the force turns
     return (impulse(a, least, zero - lo) + impulse(least, b, hi - zero)) / law.dt;
+}
+
+// The same, the motion at lo and hi taken along `now`. Out of line: the
+// common step calls it only where the force turns.
+[[gnu::noinline]] inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo,
+                                             double hi, double pull = 0.0)
+{
+    return frictionBetween(law, state, now, law.o.after(now, lo), law.o.after(now, hi), lo, hi, pull);
 }
 
 namespace detail {
@@ -328,14 +347,15 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     }
     // The continuous motion at this step, of x + shift: free (x'' = -F - pull).
     const double shift = pull / law.o.k;
-    Motion now;
+    Motion now, touch;
     if (state.phase == CollisionPhase::fresh && v > 0.0 && x <= kFreshTouchSteps * v * dt) {
         // free flight before: x = vh s + pull s^2 / 2 with vh the rate
         // LIGGGHTS gives, and the rate at touch vh + pull s
         const double vh = v - 0.5 * dt * pull;
         const double s = freeFlightTime(x, vh, pull);
         r.sinceStart = s;
-        now = law.o.after({shift, vh + pull * s}, s);
+        touch = {shift, vh + pull * s};
+        now = law.o.after(touch, s);
         state.previousOffset = now.x - shift - x;
     } else {
         // under way: the previous sample and this one define the motion
@@ -344,27 +364,32 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         now = {x + shift, law.uX * (x + shift) + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
-    const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;  // this step's part of the contact
-    const auto endingAndSlope = [&](double tau) {
-        const Motion m = law.o.after(now, tau);
+    // this step's part of the contact: from the touch, or half a step back
+    const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;
+    const Motion start = r.sinceStart >= 0.0 ? touch : law.o.after(now, from);
+    const auto endingAndSlope = [&](const Motion& m) {
         return law.forceEnds ? std::make_pair(law.o.ending(m, true) - pull, law.o.forceRate(m))
                              : std::make_pair(m.x - shift, m.u);
     };
     // (the leapfrog moves the rate by -dt (force + pull))
-    if (endingAndSlope(dt).first > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
-        const double next = law.o.after(now, dt).x - shift;
-        r.force = (v - (next - x) / dt) / dt - pull;
-        r.friction = frictionOver(law, state, now, from, 0.5 * dt, pull);
+    const Motion ahead = law.o.after(now, dt);
+    const double endAhead = endingAndSlope(ahead).first;
+    if (endAhead > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
+        r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
+        r.friction = frictionBetween(law, state, now, start, law.o.after(now, 0.5 * dt), from, 0.5 * dt, pull);
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
-    const double tau = endingAndSlope(0.0).first <= 0.0 ? 0.0 : detail::bracketedNewton(endingAndSlope, 0.0, dt);
+    const double endNow = endingAndSlope(now).first;
+    const double tau = endNow <= 0.0 ? 0.0
+                                     : detail::bracketedNewton([&](double t) { return endingAndSlope(law.o.after(now, t)); },
+                                                               0.0, dt, endNow, dt * endNow / (endNow - endAhead));
     r.endsAfter = tau;
     // The continuous contact parts with u_end^2 + 2 pull x_end (x_end: the
     // overlap left at the end of the force, zero for the overlap's end; to
     // x / d): the kick gives that rate where the overlap closes.
-    r.friction = frictionOver(law, state, now, from, tau, pull);
     const Motion end = law.o.after(now, tau);
+    r.friction = frictionBetween(law, state, now, start, end, from, tau, pull);
     const double target = end.u * end.u + 2.0 * pull * (end.x - shift);
     if (target < 2.0 * pull * x) {
         // The pull alone parts the bodies from x faster than the law: no kick
@@ -486,8 +511,8 @@ V exactTangentialEnds(const StepLaw& law, const CollisionStep& normal, V& xi, co
     // the motion through this sample and the one before, per component;
     // by linearity its rate at the end from the motions from (1, 0) and (0, 1)
     const V rate = law.uX * xi + law.uV * w;
-    const double tau = normal.endsAfter;
-    const V exit = law.o.after({1.0, 0.0}, tau).u * xi + law.o.after({0.0, 1.0}, tau).u * rate;
+    const FreeOscillator::Flow flow = law.o.flow(normal.endsAfter);
+    const V exit = law.o.after({1.0, 0.0}, flow).u * xi + law.o.after({0.0, 1.0}, flow).u * rate;
     return (exit - w) / dt;
 }
 
