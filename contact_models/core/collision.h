@@ -101,6 +101,9 @@ struct StepLaw {
     // would never run.
     double endMargin = 0;
     double inverseDt = 0;
+    // The flows over -dt/2, dt/2 and dt: a contact's start and end take the
+    // motion there without a transcendental evaluation.
+    FreeOscillator::Flow flowBack{}, flowHalf{}, flowStep{};
     // An ended contact whose overlap would take longer than this to close at
     // its rate is held by other contacts (set by stepLaw from binary
     // collisions at 65 start phases: 1.5 times the longest they take, and at
@@ -142,6 +145,7 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.forceA = s.kStep / k - 1.0;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.inverseDt = 1.0 / dt;
+    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt);
     return s;
 }
 
@@ -261,12 +265,13 @@ inline double frictionBetween(const StepLaw& law, CollisionState& state, const M
     return (impulse(a, least, zero - lo) + impulse(least, b, hi - zero)) / law.dt;
 }
 
-// The same, the motion at lo and hi taken along `now`. Out of line: the
-// common step calls it only where the force turns.
-[[gnu::noinline]] inline double frictionOver(const StepLaw& law, CollisionState& state, const Motion& now, double lo,
-                                             double hi, double pull = 0.0)
+// The same over this step's half-step interval [-dt/2, dt/2]. Out of line:
+// the common step calls it only where the force turns.
+[[gnu::noinline]] inline double frictionOverStep(const StepLaw& law, CollisionState& state, const Motion& now,
+                                                 double pull)
 {
-    return frictionBetween(law, state, now, law.o.after(now, lo), law.o.after(now, hi), lo, hi, pull);
+    const double h = 0.5 * law.dt;
+    return frictionBetween(law, state, now, law.o.after(now, law.flowBack), law.o.after(now, law.flowHalf), -h, h, pull);
 }
 
 namespace detail {
@@ -366,17 +371,17 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
     // this step's part of the contact: from the touch, or half a step back
     const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;
-    const Motion start = r.sinceStart >= 0.0 ? touch : law.o.after(now, from);
+    const Motion start = r.sinceStart >= 0.0 ? touch : law.o.after(now, law.flowBack);
     const auto endingAndSlope = [&](const Motion& m) {
         return law.forceEnds ? std::make_pair(law.o.ending(m, true) - pull, law.o.forceRate(m))
                              : std::make_pair(m.x - shift, m.u);
     };
     // (the leapfrog moves the rate by -dt (force + pull))
-    const Motion ahead = law.o.after(now, dt);
+    const Motion ahead = law.o.after(now, law.flowStep);
     const double endAhead = endingAndSlope(ahead).first;
     if (endAhead > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
         r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
-        r.friction = frictionBetween(law, state, now, start, law.o.after(now, 0.5 * dt), from, 0.5 * dt, pull);
+        r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
@@ -437,8 +442,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
             else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed + law.aheadA * pull >= 0.0) r.friction = mean;
             else {
                 const double shifted = x + pull / law.o.k;
-                r.friction = frictionOver(law, state, {shifted, law.uX * shifted + law.uV * vUsed}, -0.5 * law.dt,
-                                          0.5 * law.dt, pull);
+                r.friction = frictionOverStep(law, state, {shifted, law.uX * shifted + law.uV * vUsed}, pull);
             }
             return r;
         }
@@ -504,8 +508,9 @@ V exactTangentialEnds(const StepLaw& law, const CollisionStep& normal, V& xi, co
     const double dt = law.dt;
     if (normal.sinceStart >= 0.0) {
         const double s = normal.sinceStart;
-        xi = w * law.o.after({0.0, 1.0}, s).x;
-        const V next = w * law.o.after({0.0, 1.0}, s + dt).x;
+        const Motion atTouch = law.o.after({0.0, 1.0}, s);
+        xi = w * atTouch.x;
+        const V next = w * law.o.after(atTouch, law.flowStep).x;
         return ((next - xi) / dt - w) / dt;
     }
     // the motion through this sample and the one before, per component;
