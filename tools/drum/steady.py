@@ -156,6 +156,9 @@ def commit(message, *paths, tries=10):
     process holds the index, so a study can run beside other work in the same repository."""
     for k in range(tries):
         add = subprocess.run(["git", "add", *map(str, paths)], cwd=harness.REPO, capture_output=True, text=True)
+        if add.returncode == 0 and subprocess.run(["git", "diff", "--cached", "--quiet", "--", *map(str, paths)],
+                                                  cwd=harness.REPO).returncode == 0:
+            return  # already committed as it is (a checkpoint asked for right after the driver's own)
         r = add if add.returncode else subprocess.run(
             ["git", "commit", "-q", "-m", message, "--", *map(str, paths)], cwd=harness.REPO,
             capture_output=True, text=True)
