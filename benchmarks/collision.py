@@ -11,7 +11,6 @@ force computation, LIGGGHTS' loop over contacts with the contact model inlined i
 Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json."""
 
 import argparse
-import re
 import shutil
 import subprocess
 import sys
@@ -54,12 +53,9 @@ def instructions(mode, time):
     if not valgrind:
         raise harness.RunFailed("--instructions needs valgrind (apt-get install valgrind), or pass --no-instructions")
     counts = harness.post(f"collision/{mode}.callgrind")
-    cmd = [valgrind, "--tool=callgrind", f"--callgrind-out-file={counts}", harness.tool_path("liggghts"),
-           "-in", "inputs/column.in"]
-    for k, v in column_variables(mode, time, f"collision/{mode}_callgrind").items():
-        cmd += ["-var", k, str(v)]
-    with open(harness.post(f"collision/{mode}_callgrind.log"), "w") as log:
-        subprocess.run(cmd, cwd=harness.REPO, stdout=log, stderr=subprocess.STDOUT, check=True)
+    harness.liggghts("inputs/column.in", column_variables(mode, time, f"collision/{mode}_callgrind"),
+                     log=harness.post(f"collision/{mode}_callgrind.log"),
+                     launcher=(valgrind, "--tool=callgrind", f"--callgrind-out-file={counts}"))
     text = subprocess.run(["callgrind_annotate", "--inclusive=yes", str(counts)], capture_output=True, text=True,
                           check=True).stdout
     number = lambda line: int(line.split()[0].replace(",", ""))  # noqa: E731

@@ -130,13 +130,14 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     // has, at x_n, the rate u = -lambda x_n + omega (x_n cos - x_{n-1} e) / sin.
     s.uX = -s.o.lambda + s.o.omega * (co - e) / si;
     s.uV = s.o.omega * e * dt / si;
+    const double h = 0.5 * dt;
+    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt);
     // One step on, by linearity: the motion from (1, uX) and from (0, uV).
-    const Motion fromX = s.o.after({1.0, s.uX}, dt), fromV = s.o.after({0.0, s.uV}, dt);
+    const Motion fromX = s.o.after({1.0, s.uX}, s.flowStep), fromV = s.o.after({0.0, s.uV}, s.flowStep);
     s.endX = s.o.ending(fromX, forceEnds);
     s.endV = s.o.ending(fromV, forceEnds);
-    const double h = 0.5 * dt;
-    const Motion aheadX = s.o.after({1.0, s.uX}, h), aheadV = s.o.after({0.0, s.uV}, h);
-    const Motion backX = s.o.after({1.0, s.uX}, -h), backV = s.o.after({0.0, s.uV}, -h);
+    const Motion aheadX = s.o.after({1.0, s.uX}, s.flowHalf), aheadV = s.o.after({0.0, s.uV}, s.flowHalf);
+    const Motion backX = s.o.after({1.0, s.uX}, s.flowBack), backV = s.o.after({0.0, s.uV}, s.flowBack);
     s.aheadX = s.o.ending(aheadX, true), s.aheadV = s.o.ending(aheadV, true);
     s.frictionX = (backX.u - aheadX.u) / dt, s.frictionV = (backV.u - aheadV.u) / dt;
     s.endA = (s.endX - (forceEnds ? k : 1.0)) / k;
@@ -145,7 +146,6 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.forceA = s.kStep / k - 1.0;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.inverseDt = 1.0 / dt;
-    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt);
     return s;
 }
 
@@ -248,10 +248,10 @@ inline double frictionBetween(const StepLaw& law, CollisionState& state, const M
     const FreeOscillator& o = law.o;
     const auto impulse = [&](const Motion& p, const Motion& q, double span) { return std::fabs(p.u - q.u - pull * span); };
     const double meanForce = impulse(a, b, hi - lo) / law.dt;
-    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(o.ending(b, true) - pull < 0.0))
-        return meanForce;
+    const double fb = o.ending(b, true) - pull;  // the force at hi
+    if (law.forceEnds || state.phase == CollisionPhase::attractive || !(fb < 0.0)) return meanForce;
     state.phase = CollisionPhase::attractive;
-    const double fa = o.ending(a, true) - pull, fb = o.ending(b, true) - pull;
+    const double fa = o.ending(a, true) - pull;
     if (!(fa > 0.0)) return meanForce;
     double zero = pull == 0.0 ? o.forceZeroFrom(now, lo) : hi + 1.0;
     if (!(zero <= hi)) {

@@ -60,13 +60,14 @@ def mpirun(np):
     return cmd
 
 
-def liggghts(script, variables=None, log=None, np=1, check=True):
+def liggghts(script, variables=None, log=None, np=1, check=True, launcher=()):
     """Runs `liggghts -in script -var NAME VALUE ...` from the repository root, output to `log`
-    (default post/<script stem>.log). Returns the Log. Raises RunFailed with the log's tail."""
+    (default post/<script stem>.log), each rank under `launcher` if given (e.g. valgrind).
+    Returns the Log. Raises RunFailed with the log's tail."""
     from .logs import Log
     log = Path(log) if log else post(Path(script).stem + ".log")
     log.parent.mkdir(parents=True, exist_ok=True)
-    cmd = mpirun(np) + [tool_path("liggghts"), "-in", str(script)]
+    cmd = mpirun(np) + [*launcher, tool_path("liggghts"), "-in", str(script)]
     for k, v in (variables or {}).items():
         cmd += ["-var", k, str(v)]
     with open(log, "w") as out:
