@@ -6,8 +6,9 @@ single`: the integrator's recurrence, which LIGGGHTS follows to round-off, tests
 and what exactCollision costs in LIGGGHTS: the dense column (inputs/column.in, tangential
 pournin; beads dropped from a lattice: collisions and lasting contacts) with exactRestitution and
 with exactCollision, interleaved rounds, loop-time ratio; and, as a measure no other job on the
-machine can move, the instructions each run executes (valgrind's callgrind: the whole run and the pair
-force computation, LIGGGHTS' loop over contacts with the contact model inlined in it).
+machine can move, the instructions each run executes (valgrind's callgrind: the whole run, the pair
+force computation, LIGGGHTS' loop over neighbours with the contact model called in it, and the contact
+model's own instructions per contact-step, like for like).
 Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json."""
 
 import argparse
@@ -62,7 +63,31 @@ def instructions(mode, time):
     total = next(number(line) for line in text.splitlines() if "PROGRAM TOTALS" in line)
     pair = next(number(line) for line in text.splitlines()
                 if "PairStyles::Granular<" in line and "::compute_force(" in line)
-    return {"total": total, "pair": pair}
+    return {"total": total, "pair": pair, **model_per_contact(counts)}
+
+
+def model_per_contact(counts):
+    """The contact model's instructions in the pair loop and its calls there (the pair contact-steps):
+    the normal and tangential models' surfacesIntersect (kept out of line for this count), inclusive,
+    as called from the pair style. The two modes' runs diverge (exactCollision changes the
+    dissipation) and make different numbers of contact-steps (3 % apart seen), so the pair totals
+    alone do not compare like for like; per contact-step they do."""
+    text = subprocess.run(["callgrind_annotate", "--tree=caller", "--inclusive=yes", str(counts)],
+                          capture_output=True, text=True, check=True).stdout.splitlines()
+    found = {}
+    for k, line in enumerate(text):
+        for model, cls in (("normal", "ContactModels::NormalModel<"), ("tangential", "ContactModels::TangentialModel<")):
+            if line.lstrip(" 0123456789,().%").startswith("*  ") and cls in line and "::surfacesIntersect(" in line:
+                # the caller lines above it, up to the previous blank line: the pair style's
+                for above in reversed(text[max(0, k - 8):k]):
+                    if not above.strip():
+                        break
+                    if "PairStyles::Granular<" in above:
+                        calls = int(above.rsplit("(", 1)[1].split("x)")[0].replace(",", ""))
+                        found[model] = (int(above.split()[0].replace(",", "")), calls)
+    if set(found) != {"normal", "tangential"} or found["normal"][1] != found["tangential"][1]:
+        raise harness.RunFailed(f"callgrind: the contact models' calls from the pair style not found: {found}")
+    return {"model": found["normal"][0] + found["tangential"][0], "contact_steps": found["normal"][1]}
 
 
 def run(args):
@@ -117,10 +142,22 @@ def instruction_text(counts):
     if not counts:
         return ""
     r, c = counts["exactRestitution"], counts["exactCollision"]
-    return ("Instructions executed (callgrind; the same column run, once per mode: a count no other job on the "
+    text = ("Instructions executed (callgrind; the same column run, once per mode: a count no other job on the "
             f"machine moves):\nwhole run {c['total'] / r['total']:.3f}, pair force computation (every contact's "
-            f"step, LIGGGHTS' loop included) **{c['pair'] / r['pair']:.3f}** "
+            f"step, LIGGGHTS' loop included) {c['pair'] / r['pair']:.3f} "
             f"({c['pair'] / 1e9:.2f} against {r['pair'] / 1e9:.2f} billion).\n")
+    if "contact_steps" not in r or "contact_steps" not in c:
+        return text
+    model = {mode: counts[mode]["model"] / counts[mode]["contact_steps"] for mode in counts}
+    whole = r["pair"] / r["contact_steps"]
+    return text + (
+        "The two runs diverge and make different numbers of pair contact-steps "
+        f"({c['contact_steps'] / 1e6:.2f} against {r['contact_steps'] / 1e6:.2f} million), so per contact-step, "
+        "like for like: the contact model (normal and tangential, inclusive) executes "
+        f"{model['exactCollision']:.0f} instructions per contact-step under exactCollision against "
+        f"{model['exactRestitution']:.0f}, on a pair computation of {whole:.0f} per contact-step under "
+        f"exactRestitution (its loop over neighbours included): exactCollision's per-contact cost "
+        f"**{1 + (model['exactCollision'] - model['exactRestitution']) / whole:.3f}** times exactRestitution's.\n")
 
 
 @common.section_of("collision", "collision")
