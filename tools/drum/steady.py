@@ -288,6 +288,7 @@ class Study:
         """The committed end state of a speed, unpacked into post/ (LIGGGHTS reads plain files)."""
         packed = self.docs / f"{rpm}rpm" / "state.restart.gz"
         plain = self.work / f"{rpm}rpm_committed.restart"
+        plain.parent.mkdir(parents=True, exist_ok=True)  # a fresh clone has no post/<name> yet
         if not plain.exists() or plain.stat().st_mtime < packed.stat().st_mtime:
             unpack(packed, plain)
         return plain
