@@ -121,6 +121,17 @@ class Pack(unittest.TestCase):
             self.assertEqual((d / "a.gz").read_bytes(), (d / "sub_b.gz").read_bytes())
             self.assertEqual(gzip.decompress((d / "a.gz").read_bytes()), (d / "state").read_bytes())
 
+    def test_a_committed_state_unpacks_where_post_does_not_exist_yet(self):
+        # a fresh clone resuming after a finished speed: post/<name> is made on the way
+        with tempfile.TemporaryDirectory() as d:
+            d = Path(d)
+            (d / "docs" / "7rpm").mkdir(parents=True)
+            (d / "state").write_bytes(b"restart bytes" * 100)
+            steady.pack(d / "state", d / "docs" / "7rpm" / "state.restart.gz")
+            study = object.__new__(steady.Study)
+            study.work, study.docs = d / "post" / "study", d / "docs"
+            self.assertEqual(study.state(7).read_bytes(), (d / "state").read_bytes())
+
 
 if __name__ == "__main__":
     unittest.main()
