@@ -98,8 +98,8 @@ struct StepLaw {
     // What ends the contact, one step on, must exceed endMargin x_n to go on:
     // a next sample on the surface within round-off would fall to or below
     // zero in the leapfrog, and the end step (its exit rate, its friction)
-    // would never run.
-    double endMargin = 0;
+    // would never run. The common step tests endX - endMargin (endGoX).
+    double endMargin = 0, endGoX = 0;
     double inverseDt = 0;
     // The flows over -dt/2, dt/2 and dt: a contact's start and end take the
     // motion there without a transcendental evaluation.
@@ -145,6 +145,7 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.frictionA = s.frictionX / k - 1.0;
     s.forceA = s.kStep / k - 1.0;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
+    s.endGoX = s.endX - s.endMargin;
     s.inverseDt = 1.0 / dt;
     return s;
 }
@@ -436,7 +437,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     const bool attractive = state.phase == CollisionPhase::attractive;
     if (attractive || state.phase == CollisionPhase::touching) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
-        if (law.endX * x + law.endV * vUsed + law.endA * pull > law.endMargin * x) {
+        if (law.endGoX * x + law.endV * vUsed + law.endA * pull > 0.0) {
             state.previousOffset = 0.0;
             CollisionStep r;
             r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
@@ -532,7 +533,8 @@ V exactTangentialEnds(const StepLaw& law, const CollisionStep& normal, V& xi, co
 template <class V>
 inline V exactTangentialStep(const StepLaw& law, const CollisionStep& normal, V& xi, const V& w)
 {
-    if (normal.sinceStart >= 0.0 || normal.endsAfter >= 0.0) return detail::exactTangentialEnds(law, normal, xi, w);
+    // (either, in one test)
+    if (std::max(normal.sinceStart, normal.endsAfter) >= 0.0) return detail::exactTangentialEnds(law, normal, xi, w);
     return -(law.kStep * xi + law.cStep * w);  // the common case: inside the contact
 }
 

@@ -58,7 +58,6 @@ public:
         viscoelastic::TangentialState state;
         state.xi = Vec3(h[0], h[1], h[2]);
         state.normal = Vec3(h[3], h[4], h[5]);
-        state.normalForce = h[6];
         const Vec3 normal(sidata.en[0], sidata.en[1], sidata.en[2]);  // LIGGGHTS calls the contact normal `en`
         const Vec3 vt(sidata.vtr1, sidata.vtr2, sidata.vtr3);
         const bool advance = sidata.computeflag && sidata.shearupdate;
@@ -70,12 +69,15 @@ public:
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
         const double limit = viscoelastic::frictionLimit(mu, exact ? t->collisionStep().friction : sidata.Fn);
         Vec3 Ft;
+        // h[6], the unclipped normal force of the step before, serves the
+        // nominal spring only
         if (exact) {
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
             Ft = viscoelastic::pourninExactTangentialForce(state, normal, drive.rate, drive.mass,
                                                            t->collision(sidata.itype, sidata.jtype).tangential,
                                                            t->collisionStep(), limit, advance);
         } else {
+            state.normalForce = h[6];
             Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
                                                       advance, unclippedNormalForce(sidata),
                                                       viscoelastic::timeSinceTouch(sidata.deltan, -sidata.vn, update->dt));
@@ -85,7 +87,7 @@ public:
                 h[d] = state.xi[d];
                 h[3 + d] = state.normal[d];
             }
-            h[6] = state.normalForce;
+            if (!exact) h[6] = state.normalForce;
         }
 
         // Torque about each centre from the force at the contact point.
