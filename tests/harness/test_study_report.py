@@ -3,6 +3,7 @@ between speeds rise, drop or do not change beyond twice the combined standard er
 findings beside them, the cost beside Table 3.2, and the chart."""
 
 import csv
+import random
 import sys
 import tempfile
 import unittest
@@ -61,6 +62,38 @@ class Report(unittest.TestCase):
             text = (Path(d) / "capped.md").read_text()
             self.assertIn("| 21 | 60.0 | ", text)
             self.assertIn("| capped |", text)
+
+    def test_time_to_the_target_replays_the_stop_rule(self):
+        # 60 rpm: a revolution is 1 s, 20 snapshots 0.05 s apart. A constant series is settled from
+        # its first snapshot with zero batch spread, so the verdict is 'done' at the first snapshot
+        # that completes min_batches whole revolutions of samples: sample 20 b - 1, at (20 b - 1) 0.05 s.
+        # A series with a spread above the target never is (nan), nor one too short.
+        def series(n, hc=lambda k: -0.1):
+            return [{"time_s": 3.0 + 0.05 * k, "beads": 100.0, "wall_contacts": 10.0, "Hh_m": 0.06, "Hd_m": 0.04,
+                     "Hc_m": hc(k), "drum_force_N": 1e-3, "angle_deg": 25.0, "layer_thickness_m": 0.05,
+                     "surface_velocity_mps": 0.5, "bed_turn_1": 1.0, "wall_slip_1": 0.0, "wall_roll_1": 0.0}
+                    for k in range(n)]
+        run = {"settings": {"targets": {"Hc": 3e-4, "angle": 0.3}}}
+        for b in (3, 5):
+            t, verdict = report.time_to_target(series(100), run, 60, 1e-3, b)
+            self.assertAlmostEqual(t, (20 * b - 1) * 0.05, places=9)
+            self.assertEqual(int(verdict["batches"]), b)
+            self.assertAlmostEqual(float(verdict["Hc_m"]), -0.1, places=12)
+        t, verdict = report.time_to_target(series(59), run, 60, 1e-3, 3)
+        self.assertTrue(t != t and verdict is None)
+        # white noise of 0.1 m per snapshot: revolution means spread by 0.1/sqrt(20) = 22 mm, so 5 to
+        # 10 batches give a standard error near 7-10 mm; one below 0.3 mm has a chance of order
+        # 1e-6 per verdict (chi-squared, 4 degrees of freedom)
+        rng = random.Random(1)
+        noise = [rng.gauss(0.0, 0.1) for _ in range(200)]
+        noisy = series(200, hc=lambda k: -0.1 + noise[k])
+        t, verdict = report.time_to_target(noisy, run, 60, 1e-3, 5)
+        self.assertTrue(t != t and verdict is None)
+        # the same series is settled: with a target of 30 mm it is done once 5 revolutions fit
+        loose = {"settings": {"targets": {"Hc": 0.03, "angle": 0.3}}}
+        t, verdict = report.time_to_target(noisy, loose, 60, 1e-3, 5)
+        self.assertGreaterEqual(t, 4.95)
+        self.assertLess(float(verdict["Hc_se_m"]), 0.03)
 
     def test_no_table_no_report(self):
         with tempfile.TemporaryDirectory() as d:

@@ -6,12 +6,20 @@ exceeds twice the combined standard error), and the cost beside the thesis' Tabl
 docs/drum/NAME.png, the metrics against speed shaped like Fig. 3.2-3.4 (Hh, Hd, Hc) with the
 angle of repose, the drum force and the cost. steady.py rewrites both after each speed.
 
+The time to the target: the stop rule (`drum_metrics steady`, the study's targets) replayed on
+each finished speed's committed series, cut after each snapshot in turn: when would the averages
+first have met the target standard errors with 3 batches, and with the study's own minimum? The
+cost to there is the speed's CPU time per simulated second (both ranks busy throughout, so half of
+it is the time on 2 cores).
+
   tools/drum/report.py --name study_thesis
 """
 
 import argparse
+import csv
 import math
 import sys
+import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -68,7 +76,49 @@ def findings(rows):
     return out
 
 
-def markdown(name, rows):
+def time_to_target(series, run, rpm, dt, min_batches):
+    """The stop rule replayed on a speed's series (rows of `drum_metrics series`, its first the
+    speed's start state): (simulated seconds from the start, the verdict's row) at the first
+    snapshot where it says done with `min_batches` batches; (nan, None) where it never does."""
+    t0, revolution = float(series[0]["time_s"]), 60.0 / rpm
+    spacing = float(series[1]["time_s"]) - t0 if len(series) > 1 else revolution
+    targets = [f"--target={k}={v:g}" for k, v in run["settings"]["targets"].items()]
+    columns = ["step"] + list(series[0].keys())
+    with tempfile.TemporaryDirectory() as tmp:
+        cache = Path(tmp) / "cache.csv"
+        for n in range(1, len(series) + 1):
+            if n * spacing < min_batches * revolution * (1 - 1e-9):
+                continue  # fewer samples than that many whole revolutions hold
+            with open(cache, "w") as f:  # drum_metrics reads '\n' line ends
+                csv.writer(f, lineterminator="\n").writerows(
+                    [columns] + [[round(float(r["time_s"]) / dt), *(repr(v) if isinstance(v, float) else v
+                                                                   for v in r.values())] for r in series[:n]])
+            verdict = harness.read_csv_text(harness.tool(
+                "drum_metrics", "steady", "--prefix", Path(tmp) / "none" / "beads", "--dt", f"{dt:g}", "--rpm", rpm,
+                "--cache", cache, "--batch-seconds", f"{revolution:.10g}", "--min-batches", min_batches, *targets))[0]
+            if int(verdict["done"]) == 1:
+                return float(series[n - 1]["time_s"]) - t0, verdict
+    return float("nan"), None
+
+
+def targets_reached(docs, name, rows, batches=(3,)):
+    """Per finished speed with its series committed: [(rpm, min_batches, simulated s, CPU hours,
+    verdict row)] for `batches` and the study's own minimum."""
+    out = []
+    for r in rows:
+        folder = docs / name / f"{r['rpm']:g}rpm"
+        if not (folder / "series_metrics.csv").exists() or not (folder / "run.json").exists():
+            continue
+        series = harness.read_csv(folder / "series_metrics.csv")
+        run = harness.read_json(folder / "run.json")
+        per_second = run["cpu_s"] / 3600.0 / run["simulated_s"]
+        for b in sorted({*batches, run["settings"]["min_batches"]}):
+            t, verdict = time_to_target(series, run, r["rpm"], float(r["dt_s"]), b)
+            out.append((int(r["rpm"]), b, t, t * per_second, verdict))
+    return out
+
+
+def markdown(name, rows, reached=()):
     def pm(r, col, se, scale, digits):
         v, e = float(r[col]) * scale, float(r[se]) * scale
         return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
@@ -108,6 +158,29 @@ def markdown(name, rows):
         ours_rate = float(r["cpu_hours"]) / simulated if simulated > 0 else float("nan")
         lines.append(f"| {rpm} | {simulated:.1f} | {float(r['cpu_hours']):.1f} | {thesis[2]:.1f} | {thesis[0]:.1f} | "
                      f"{thesis_cpu_hours(rpm):.0f} | {ours_rate / (thesis_cpu_hours(rpm) / thesis[2]):.2g} |")
+    if reached:
+        lines += ["", "## Time to the target", "",
+                  "The stop rule replayed on each speed's committed series, cut after each snapshot: the first "
+                  "snapshot where the averages met the target standard errors with at least this many batches "
+                  "(whole revolutions after the steady start), counted from the speed's start state (7 rpm: from "
+                  "the grid). Minutes on 2 cores: half the CPU time (both ranks busy throughout). The averages "
+                  "there beside the speed's final ones (the table above) show what the shorter run would have "
+                  "reported. A standard error from 3 batches has 2 degrees of freedom (from 5: 4), and the "
+                  "replay stops at the first snapshot where it is small enough, so the shorter runs' error "
+                  "bars are the less trustworthy.", "",
+                  "| rpm | batches | simulated [s] | CPU hours | minutes on 2 cores | Hc [mm] | angle [deg] |",
+                  "|---|---|---|---|---|---|---|"]
+        for rpm, b, t, cpu, v in reached:
+            avg = (f"{1e3 * float(v['Hc_m']):.3f} ± {1e3 * float(v['Hc_se_m']):.3f} | "
+                   f"{float(v['angle_deg']):.3f} ± {float(v['angle_se_deg']):.3f}") if v else "– | –"
+            lines.append(f"| {rpm} | {b} | {t:.2f} | {cpu:.1f} | {30.0 * cpu:.0f} | {avg} |")
+        lines.append("")
+        for b in sorted({b for _, b, _, _, _ in reached}):
+            minutes = sorted(30.0 * cpu for _, bb, _, cpu, _ in reached if bb == b and math.isfinite(cpu))
+            if minutes:
+                m = len(minutes)
+                median = minutes[m // 2] if m % 2 else 0.5 * (minutes[m // 2 - 1] + minutes[m // 2])
+                lines.append(f"- {b} batches: median over {m} speeds {median:.0f} minutes on 2 cores.")
     return "\n".join(lines) + "\n"
 
 
@@ -140,7 +213,7 @@ def write(name, docs=None):
         return []
     rows = sorted(harness.read_csv(table), key=lambda r: float(r["rpm"]))
     md, png = docs / f"{name}.md", docs / f"{name}.png"
-    md.write_text(markdown(name, rows))
+    md.write_text(markdown(name, rows, targets_reached(docs, name, rows)))
     chart(name, rows, png)
     return [md, png]
 
