@@ -30,7 +30,7 @@ namespace viscoelastic {
 // load is at the binary limit of an oscillator Z = 2.4-3.1 times stiffer and
 // more damped, the last stable one at Z >= 3.1; the turning drum fails later
 // (Z 1.8-2.3). The guard takes Z = 3.5, 12 % above the largest Z of a
-// failing run: its timestep lies 6-17.5 % below the first failing one of each
+// failing run: its timestep lies 5.7-17.5 % below the first failing one of each
 // en and load. A fixed fraction of the binary limit cannot do this: the
 // onset lies at 0.43 of it for en 0.1 and 0.56-0.64 for en 0.95 (the former
 // guard, half of it, let en 0.1 and 0.3 fail).

@@ -164,19 +164,31 @@ TEST(Oblique, FiniteFrictionWithEtUnlikeEnFollowsTheLaw)
 // through zero when the force turns attractive: the "sticking" impact slips
 // at its end and falls short of et. Its on/off dashpot makes the discrete
 // error larger (measured on a wall: 3.8 % at tc/100, 0.36 % at tc/1000,
-// first order), so the 3 % acceptance is checked at tc/400.
+// first order), so it is checked at tc/200 and tc/400.
 TEST(Oblique, StickingTangentialRestitutionHistory)
 {
+    // It converges: the error at tc/200 exceeds that at tc/400 (a single start
+    // phase: measured 2.7 and 2.0 times, wall and pair), and each stays within
+    // the first-order estimate from tc/100 (3.8 % there: 1.9 % and 0.95 %)
+    // with half of it again for the phase (measured 1.4 / 1.5 %, 0.5 / 0.8 %).
     for (Geometry g : {Geometry::Wall, Geometry::Pair}) {
-        Case c = headOn(g, false);
-        c.tangential = Tangential::History;
-        c.params = {1e-4, 0.5, 0.5, 0.5};
-        c.tangentialSpeed = 0.3;
-        c.dt = c.params.tc / 400.0;
-        const Reference ref = reference(c);
-        const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking_history")));
-        EXPECT_NEAR(lig.tangentialRestitution / ref.outcome.tangentialRestitution, 1.0, 0.03) << name(g);
-        EXPECT_LT(ref.outcome.tangentialRestitution, 0.9 * c.params.et) << name(g);
+        double error[2];
+        for (int k = 0; k < 2; ++k) {
+            Case c = headOn(g, false);
+            c.tangential = Tangential::History;
+            c.params = {1e-4, 0.5, 0.5, 0.5};
+            c.tangentialSpeed = 0.3;
+            c.dt = c.params.tc / (k == 0 ? 200.0 : 400.0);
+            const Reference ref = reference(c);
+            const Outcome lig = measureTrajectory(c, runLiggghts(c, options("sticking_history" + std::to_string(k))));
+            error[k] = lig.tangentialRestitution / ref.outcome.tangentialRestitution - 1.0;
+            EXPECT_LT(ref.outcome.tangentialRestitution, 0.9 * c.params.et) << name(g);
+        }
+        std::printf("%s: history's error against its law %.3f %% at tc/200, %.3f %% at tc/400\n", name(g).c_str(),
+                    100 * error[0], 100 * error[1]);
+        EXPECT_LT(std::fabs(error[0]), 1.5 * 0.019) << name(g);
+        EXPECT_LT(std::fabs(error[1]), 1.5 * 0.0095) << name(g);
+        EXPECT_GT(std::fabs(error[0]), std::fabs(error[1])) << name(g);
     }
 }
 

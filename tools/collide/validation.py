@@ -216,7 +216,7 @@ normal one: near the end of a contact Fn (and so the Coulomb cap mu |Fn|) passes
 while the tangential spring still holds force, so the contact slides there and the spring loses
 what it held, **whatever mu**. The continuous law (Eq. 3.18-3.21) therefore restitutes a
 tangential coefficient that is not the requested et, even when it sticks everywhere else
-(Table 3.1 beads: about 0.48 for et 0.46); only et = en, where the two forces stay proportional,
+(Table 3.1 beads at small incidence: 0.489 on a wall, 0.495 for a pair, for et 0.46); only et = en, where the two forces stay proportional,
 gives et exactly. With limitForce on the force ends at zero and the same happens. The charts give
 the law's tangential restitution on a wall (1 m/s) against the incidence angle, one line per mu:
 the plateau at small angles (sticking) lies off the requested et; larger angles slide.
