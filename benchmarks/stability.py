@@ -8,12 +8,15 @@
           (what does the guard say?), under --loads times gravity. Failure: beads leave the box, or
           the kinetic energy ends above --column-energy-factor times that of the same en and load at
           the reference dt/tc (a settled bed's energy scales with its load; the factor does not);
-  drum    the settled 6 mm slab (--restart) at 21 rpm continued for --drum-time s at each dt, the
-          --drum-runs en:model pairs (en `table` = Table 3.1 with the thesis conventions). Failure:
+  drum    the settled 6 mm slab (--restart; `settled`: the shipped 24 mm thesis scene) at 21 rpm
+          continued for --drum-time s at each dt, the --drum-runs en:model[:law] specs (en `table` =
+          Table 3.1 with the thesis conventions; law, with model viscoelastic: nominal,
+          exactRestitution or exactCollision, with tangential pournin; without: drum.in's default). Failure:
           the run stops (beads leave through the drum wall), beads are missing at the end, or the
           kinetic energy ends above twice that of the same pair at the reference dt/tc.
-The guard's limits come from `contact_law limit`. --append merges drum rows into an existing
-OUT/stability_drum.csv (a rerun of the same en, dt/tc and model replaces the old row).
+The guard's limits come from `contact_law limit`. --append merges the rows into the existing
+OUT/stability_column.csv and OUT/DRUM_NAME.csv (a rerun of the same en, dt/tc, model and load
+replaces the old row).
 Writes OUT/stability_{binary,column,drum,limits}.csv and OUT/stability.json."""
 
 import sys
@@ -27,6 +30,14 @@ RUN_COLUMNS = ["en", "dt_over_tc", "model", "status", "beads_kept", "beads", "ke
 MODELS = ("hooke", "viscoelastic")
 DRUM_ENERGY_FACTOR = 2  # the drum fails when its kinetic energy ends above this times the reference's
 LONG_DRUM_FRACTIONS = "0.2,0.22,0.24,0.26,0.28,0.3,0.32"  # the committed 0.2 s drum runs
+# the drum's --drum-runs laws: drum.in's variables (exactCollision needs tangential pournin; so the
+# others take it too, to compare like for like)
+LAWS = {"nominal": {"exact": "off", "tangential": "pournin"},
+        "exactRestitution": {"exact": "on", "tangential": "pournin"},
+        "exactCollision": {"collision": "on", "exact": "off", "tangential": "pournin"}}
+SLAB_COMMAND = ("mpirun -np 2 liggghts -in inputs/drum.in -var period 0.006 -var start grid -var tangential pournin "
+                "{flag} -var time 1.0 -var dt 2e-5 -var name stability_drum/slab6_{law}")
+EXACT_DRUM_FRACTIONS = "0.2,0.225,0.247,0.25"  # the committed runs of the exact laws; the guard: 0.247-0.248
 COLUMN_ENERGY_FACTOR = 10  # the settled column: its energy is 1e-9-1e-4 J where stable, jumps by decades past it
 
 
@@ -45,6 +56,7 @@ def parser():
     p.add_argument("--restart", type=Path, help="the settled 6 mm drum slab (drum scene)")
     p.add_argument("--drum-runs", default="0.3:hooke,0.9:hooke,table:hooke,table:viscoelastic", help="en:model pairs")
     p.add_argument("--drum-fractions", default="0.1,0.2,0.25,0.3,0.35,0.4,0.45,0.5", help="dt/tc of the drum scene")
+    p.add_argument("--drum-period", help="drum.in's period [m] of the --restart state (default: drum.in's)")
     p.add_argument("--drum-time", type=float, default=0.03, help="s per drum run (default: 0.03)")
     p.add_argument("--reference", type=float, default=0.1, help="dt/tc of the drum's energy reference (default: 0.1)")
     p.add_argument("--append", action="store_true", help="merge the drum rows into OUT/DRUM_NAME.csv")
@@ -106,28 +118,35 @@ def drum(args):
     fractions = common.numbers(args.drum_fractions)
     fractions = [args.reference] + [f for f in fractions if f != args.reference]
     rows = []
+    start = {"start": "settled"} if str(args.restart) == "settled" else {"start": "restart", "restart": args.restart}
+    if args.drum_period:
+        start["period"] = args.drum_period
     for spec in common.words(args.drum_runs):
-        en, model = spec.split(":")
+        en, model, *law = spec.split(":")
         stock = common.stock_file(harness.post(f"stability_drum/stock_{en}.in"),
                                   uniform=None if en == "table" else float(en))
+        laws = LAWS.get(law[0]) if law else {}
+        if laws is None:
+            raise SystemExit(f"stability: --drum-runs {spec}: law {law[0]} is none of {', '.join(LAWS)}")
+        label = model + (f"/{law[0]}" if law else "")
         ke_ref = float("inf")
         for f in fractions:
-            tag = f"stability_drum/en{en}_{f:g}_{model}"
-            log = harness.drum(harness.post(tag + ".log"), np=args.np, check=False, start="restart",
-                               restart=args.restart, rpm=common.RPM, dt=f"{f * common.tc():.6g}", time=args.drum_time,
-                               dumpdt=1, model=model, stock=stock, name=tag)
+            tag = f"stability_drum/en{en}_{f:g}_{label.replace('/', '_')}"
+            log = harness.drum(harness.post(tag + ".log"), np=args.np, check=False, **start, rpm=common.RPM,
+                               dt=f"{f * common.tc():.6g}", time=args.drum_time, dumpdt=1, model=model, stock=stock,
+                               name=tag, **laws)
             ke = log.thermo().get("KinEng", float("nan"))
             if f == args.reference and log.returncode == 0:
                 ke_ref = ke
-            rows.append({**run_row(en if en == "table" else float(en), f, model, log, DRUM_ENERGY_FACTOR * ke_ref, ke),
+            rows.append({**run_row(en if en == "table" else float(en), f, label, log, DRUM_ENERGY_FACTOR * ke_ref, ke),
                          "load": 1})
             harness.say("stability", f"drum en {en}, dt/tc {f:g}, {model}: {rows[-1]['status']}")
     return rows
 
 
 def merge(old, new):
-    """Drum rows: `new` replaces the rows of `old` with the same en, dt/tc and model."""
-    key = lambda r: (str(r["en"]), float(r["dt_over_tc"]), r["model"])  # noqa: E731
+    """Drum or column rows: `new` replaces the rows of `old` with the same en, dt/tc, model and load."""
+    key = lambda r: (str(r["en"]), float(r["dt_over_tc"]), r["model"], float(r.get("load", 1)))  # noqa: E731
     merged = {key(r): r for r in old}
     merged.update({key(r): r for r in new})
     return list(merged.values())
@@ -140,7 +159,11 @@ def run(args):
     if "binary" in scenes:
         harness.write_csv(out / "stability_binary.csv", binary(ens, fractions))
     if "column" in scenes:
-        harness.write_csv(out / "stability_column.csv", column(ens, fractions, args), RUN_COLUMNS)
+        rows = column(ens, fractions, args)
+        column_csv = out / "stability_column.csv"
+        if args.append and column_csv.exists():
+            rows = merge(harness.read_csv(column_csv), rows)
+        harness.write_csv(column_csv, rows, RUN_COLUMNS)
     if "drum" in scenes:
         if not args.restart:
             raise SystemExit("stability: the drum scene needs --restart FILE (a settled 6 mm drum)")
@@ -150,14 +173,17 @@ def run(args):
             rows = merge(harness.read_csv(drum_csv), rows)
         harness.write_csv(drum_csv, rows, RUN_COLUMNS)
     m = harness.materials()
-    harness.write_csv(out / "stability_limits.csv", [common.limits(en) for en in sorted(set(ens) | {m["drum_en"]})])
+    limits_csv = out / "stability_limits.csv"
+    kept = {r["en"] for r in harness.read_csv(limits_csv)} if args.append and limits_csv.exists() else set()
+    harness.write_csv(limits_csv, [common.limits(en) for en in sorted(set(ens) | kept | {m["drum_en"]})])
     meta = harness.read_json(out / "stability.json") if (out / "stability.json").exists() else {}
     if "column" in scenes:
         meta.pop("column_ke_J", None)
         meta.update({"column_time_s": args.column_time, "column_energy_factor": args.column_energy_factor,
                      "settle_ratio": 10, "reference": args.reference, "loads": args.loads})
     meta.update({"drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()})
-    drum_meta = {"drum_time_s": args.drum_time, "drum_restart": str(args.restart), "reference": args.reference,
+    drum_meta = {"drum_time_s": args.drum_time, "drum_restart": str(args.restart), "drum_period": args.drum_period,
+                 "reference": args.reference,
                  "drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()}
     if "drum" in scenes and args.drum_name != "stability_drum":
         harness.write_json(out / f"{args.drum_name}.json", drum_meta)  # a second drum set keeps its own settings
@@ -244,6 +270,7 @@ def section(res):
     if not res.has("stability_binary.csv", "stability_column.csv", "stability_limits.csv", "stability.json"):
         return common.not_run("stability")
     meta, binary_rows, column_rows = res.json("stability.json"), res.csv("stability_binary.csv"), res.csv("stability_column.csv")
+    column_rows.sort(key=lambda r: (r["load"], r["en"], r["dt_over_tc"], r["model"]))
     drum_rows = res.csv("stability_drum.csv") if res.has("stability_drum.csv") else []
     drum_rows.sort(key=lambda r: (str(r["en"]), r["model"], r["dt_over_tc"]))
     # longer drum runs (stability_drum_long.json: their duration), where they were made
@@ -313,6 +340,20 @@ def section(res):
         text += (f"The same slab for {long_meta['drum_time_s']:g} s (near the boundary the flow's own fluctuation "
                  "makes single runs disagree; the\nkinetic energies are the data):\n\n"
                  + harness.markdown(sorted(long_rows, key=lambda r: (str(r["en"]), r["dt_over_tc"])), RUN_TABLE) + "\n")
+    exact_rows = res.csv("stability_drum_exact.csv") if res.has("stability_drum_exact.csv") else []
+    if exact_rows:
+        exact_meta = res.json("stability_drum_exact.json")
+        guards = {law: harness.read_csv_text(harness.tool("contact_law", "limit", "--en", m["bead_en"], "--et", m["bead_et"],
+                                                         "--law", law))[0]
+                  for law in ("exactRestitution", "exactCollision")}
+        text += ("**The exact laws on the drum**: for each law a 6 mm slab run for 1 s from the grid at 21 rpm with "
+                 "`tangential pournin` and that law (commands below; a state made with another law or tangential model "
+                 f"does not restart: its contact history differs), then {exact_meta['drum_time_s']:g} s "
+                 "at each dt with Table 3.1 and each law (tangential pournin); failure as above, against the same "
+                 f"law at tc/{1 / exact_meta['reference']:g}. The guard admits up to dt/tc "
+                 + ", ".join(f"{g['guard_tc']:.4f} ({law})" for law, g in guards.items())
+                 + " for the bead pair; runs above it stop with its ERROR (`guard`).\n\n"
+                 + harness.markdown(sorted(exact_rows, key=lambda r: (r["model"], r["dt_over_tc"])), RUN_TABLE) + "\n")
     restart = meta.get("drum_restart")
     commands = [common.command("stability.py", scenes="binary,column"),
                 common.command("stability.py", scenes="drum", restart=restart),
@@ -322,6 +363,14 @@ def section(res):
         commands.append(common.command("stability.py", scenes="drum", restart=long_meta["drum_restart"],
                                        drum_runs="0.3:hooke,table:hooke", drum_fractions=LONG_DRUM_FRACTIONS,
                                        drum_time=long_meta["drum_time_s"], drum_name="stability_drum_long"))
+    if exact_rows:
+        for law, flag in (("exactCollision", "-var collision on"), ("exactRestitution", "-var exact on")):
+            commands.append(SLAB_COMMAND.format(flag=flag, law=law))
+            commands.append(common.command("stability.py", scenes="drum",
+                                           restart=f"post/stability_drum/slab6_{law}.restart",
+                                           drum_period=exact_meta.get("drum_period"), drum_runs=f"table:viscoelastic:{law}",
+                                           drum_fractions=EXACT_DRUM_FRACTIONS, drum_time=exact_meta["drum_time_s"],
+                                           drum_name="stability_drum_exact", append=True))
     return text + common.sh(*commands)
 
 

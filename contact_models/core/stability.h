@@ -27,13 +27,13 @@ namespace viscoelastic {
 // contact does. Measured (benchmarks/README.md, stability map: the settled
 // column under its own weight and under 30 times it, stock hooke/stiffness
 // with our constants, en 0.1-0.95): the first failing run of each en and
-// load is at the binary limit of an oscillator Z = 2.4-3.1 times stiffer and
-// more damped, the last stable one at Z >= 3.1; the turning drum fails later
-// (Z 1.8-2.3). The guard takes Z = 3.5, 12 % above the largest Z of a
-// failing run: its timestep lies 5.7-17.5 % below the first failing one of each
-// en and load. A fixed fraction of the binary limit cannot do this: the
-// onset lies at 0.43 of it for en 0.1 and 0.56-0.64 for en 0.95 (the former
-// guard, half of it, let en 0.1 and 0.3 fail).
+// load is at the binary limit of an oscillator Z = 2.9-3.3 times stiffer and
+// more damped (sampled 0.005-0.01 tc apart), the last stable one at Z 3.0-3.5;
+// the turning drum fails later (Z 1.8-2.3). The guard takes Z = 3.5, 5 % above
+// the largest Z of a failing run: its timestep lies 3.9-13 % below the first
+// failing one of each en and load (3.9 %: en 0.1 under 30 g). A fixed fraction
+// of the binary limit cannot do this: the onset lies at 0.38 of it for en 0.1
+// and 0.57 for en 0.95 (the former guard, half of it, let en 0.1 and 0.3 fail).
 constexpr double kCoordinationFactor = 3.5;
 
 // Binary limit of any oscillator with stiffness k [1/s^2] and damping c
