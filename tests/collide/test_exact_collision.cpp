@@ -350,3 +350,54 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
                 << name(g) << " et " << p.et << " limitForce " << limitForce << " tc/dt " << ratio;
         }
 }
+
+TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
+{
+    // Gross sliding (vt/vn 4, mu 0.3, 1 m/s) with et != en, against the
+    // continuous law (reference ODE, rigid-arm spring; between two spheres the
+    // law's en is not the request: the pull of the tangential motion). Table
+    // 3.1's beads: within the 0.5 % at tc/10 and 1 % at the coarsest
+    // steps, for en and the contact point's change of tangential velocity du
+    // (measured: at most 0.13 % and 0.28 %). Printed, not asserted: en 0.3 /
+    // et 0.8, whose du is 0.5-0.85 % off the law at tc/5 and tc/10 alike (not a
+    // step error: at the end of the contact the lightly damped spring and the
+    // per-step friction bound part from the law's instantaneous cap; README,
+    // exactCollision, limits).
+    unsigned seed = 700;
+    struct P { double en, et; };
+    for (P p : {P{0.56, 0.46}, P{0.3, 0.8}})
+    for (Geometry g : {Geometry::Wall, Geometry::Pair})
+    for (bool limitForce : {false, true})
+        for (double ratio : {limitForce ? 6.0 : 5.0, 10.0}) {
+            Case c;
+            c.geometry = g;
+            c.limitForce = limitForce;
+            c.params = {1e-4, p.en, p.et, 0.3};
+            c.normalSpeed = 1.0;
+            c.tangentialSpeed = 4.0;
+            c.dt = c.params.tc / ratio;
+            Case law = c;
+            law.rigidArmSpring = true;
+            const Outcome ode = integrateContactOde(law, 20000);
+            const std::vector<double> phases = randomPhases(12, seed++);
+            const std::vector<Trajectory> runs = runLiggghts(
+                c, options("slide_etne_" + name(g) + std::to_string(int(ratio * 10)) + (limitForce ? "_lf" : "") +
+                               std::to_string(int(p.et * 10)),
+                           "exactCollision on"),
+                phases);
+            double worstEn = 0, worstDu = 0;
+            const double duLaw = (1.0 + ode.tangentialRestitution) * c.tangentialSpeed;
+            for (const Trajectory& t : runs) {
+                const Outcome o = measureTrajectory(c, t);
+                worstEn = std::max(worstEn, std::fabs(o.restitution / ode.restitution - 1.0));
+                worstDu = std::max(worstDu, std::fabs((1.0 + o.tangentialRestitution) * c.tangentialSpeed / duLaw - 1.0));
+            }
+            std::printf("sliding, en %.2f et %.2f, %s, limitForce %d, tc/dt %.1f: the law's en %.5f; worst against "
+                        "the law: en %.2e, du %.2e\n",
+                        p.en, p.et, name(g).c_str(), limitForce, ratio, ode.restitution, worstEn, worstDu);
+            if (p.en < 0.5) continue;  // the known limit above
+            const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
+            EXPECT_LT(worstEn, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;
+            EXPECT_LT(worstDu, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;
+        }
+}
