@@ -59,7 +59,7 @@ def parser():
     p.add_argument("--drum-period", help="drum.in's period [m] of the --restart state (default: drum.in's)")
     p.add_argument("--drum-time", type=float, default=0.03, help="s per drum run (default: 0.03)")
     p.add_argument("--reference", type=float, default=0.1, help="dt/tc of the drum's energy reference (default: 0.1)")
-    p.add_argument("--append", action="store_true", help="merge the drum rows into OUT/DRUM_NAME.csv")
+    p.add_argument("--append", action="store_true", help="merge the rows into OUT/stability_column.csv and OUT/DRUM_NAME.csv")
     p.add_argument("--drum-name", default="stability_drum",
                    help="drum results: OUT/DRUM_NAME.csv (another name: its settings in OUT/DRUM_NAME.json)")
     return p
@@ -128,6 +128,8 @@ def drum(args):
         laws = LAWS.get(law[0]) if law else {}
         if laws is None:
             raise SystemExit(f"stability: --drum-runs {spec}: law {law[0]} is none of {', '.join(LAWS)}")
+        if law and model != "viscoelastic":
+            raise SystemExit(f"stability: --drum-runs {spec}: a law needs model viscoelastic, not {model}")
         label = model + (f"/{law[0]}" if law else "")
         ke_ref = float("inf")
         for f in fractions:
@@ -186,7 +188,11 @@ def run(args):
                  "reference": args.reference,
                  "drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()}
     if "drum" in scenes and args.drum_name != "stability_drum":
-        harness.write_json(out / f"{args.drum_name}.json", drum_meta)  # a second drum set keeps its own settings
+        # a second drum set keeps its own settings, and (appended) the state each of its runs started from
+        meta_json = out / f"{args.drum_name}.json"
+        starts = harness.read_json(meta_json).get("drum_restarts", {}) if args.append and meta_json.exists() else {}
+        starts.update({spec: str(args.restart) for spec in common.words(args.drum_runs)})
+        harness.write_json(meta_json, {**drum_meta, "drum_restarts": starts})
     elif "drum" in scenes:
         meta.update(drum_meta)
     harness.write_json(out / "stability.json", meta)
@@ -343,16 +349,18 @@ def section(res):
     exact_rows = res.csv("stability_drum_exact.csv") if res.has("stability_drum_exact.csv") else []
     if exact_rows:
         exact_meta = res.json("stability_drum_exact.json")
-        guards = {law: harness.read_csv_text(harness.tool("contact_law", "limit", "--en", m["bead_en"], "--et", m["bead_et"],
-                                                         "--law", law))[0]
+        guard = lambda law, en, et: harness.read_csv_text(harness.tool(  # noqa: E731
+            "contact_law", "limit", "--en", en, "--et", et, "--law", law))[0]["guard_tc"]
+        guards = {law: (guard(law, m["bead_en"], m["bead_et"]), guard(law, m["drum_en"], m["drum_et"]))
                   for law in ("exactRestitution", "exactCollision")}
         text += ("**The exact laws on the drum**: for each law a 6 mm slab run for 1 s from the grid at 21 rpm with "
                  "`tangential pournin` and that law (commands below; a state made with another law or tangential model "
                  f"does not restart: its contact history differs), then {exact_meta['drum_time_s']:g} s "
                  "at each dt with Table 3.1 and each law (tangential pournin); failure as above, against the same "
                  f"law at tc/{1 / exact_meta['reference']:g}. The guard admits up to dt/tc "
-                 + ", ".join(f"{g['guard_tc']:.4f} ({law})" for law, g in guards.items())
-                 + " for the bead pair; runs above it stop with its ERROR (`guard`).\n\n"
+                 + ", ".join(f"{g[0]:.4f} / {g[1]:.4f} ({law})" for law, g in guards.items())
+                 + " for the bead / bead-drum pair; runs above it stop with its ERROR (`guard`). One 0.2 s run per dt, "
+                 "from a state 1 s old.\n\n"
                  + harness.markdown(sorted(exact_rows, key=lambda r: (r["model"], r["dt_over_tc"])), RUN_TABLE) + "\n")
     restart = meta.get("drum_restart")
     commands = [common.command("stability.py", scenes="binary,column"),

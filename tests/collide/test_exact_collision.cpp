@@ -113,7 +113,7 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
     // and 1 m/s): the spring driven at the plain contact point (no orbital
     // factor) missed its own law by 0.3 to 1.2 vn dt / R (9.5e-4 at tc/10),
     // and, worse, restituted et + 1.6 % at 1 m/s.
-    // Against the requested et: the 0.5 % at tc/10 and 1 % at tc/5.
+    // Against the requested et: the 0.5 % target at tc/10 and 1 % at tc/5.
     // limitForce on: the reference is exactCollision's cut law (the
     // oscillators solved for en and tc, the spring as long as the force);
     // tc/5.6 is the coarsest step the guard admits.
@@ -197,7 +197,7 @@ TEST(ExactCollision, EverySingleSlidingCollisionFollowsWalton)
     // per step by the law's mean |Fn| over the step's part of the contact
     // (the steps' own forces would miss it by 6 % at tc/5 for the worst phase).
     // Against the continuous law (reference ODE, LIGGGHTS' lever arm
-    // R - overlap/2): the 0.5 % at tc/10 and 1 % at tc/5 (measured
+    // R - overlap/2): the 0.5 % target at tc/10 and 1 % at tc/5 (measured
     // 0.008-0.08 %). Against Walton's rigid lever arm R the same 0.4-0.5 % at
     // every step (the arm is shorter by up to overlap / 2R = 0.7 % at 1 m/s):
     // within 1 %, and the worst phase moves by less than 0.1 % from tc/10 to
@@ -255,7 +255,7 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
     // centres apart (vt^2 / d), which moves both en and the friction impulse
     // (Walton's relation is 4 % off at vn 0.1 m/s, vt/vn 4). Compared: en and
     // the change of the contact point's tangential velocity, du. Tolerance:
-    // the 0.5 % at tc/10 and 1 % up to tc/9. Measured: at most 0.08 %
+    // the 0.5 % target at tc/10 and 1 % up to tc/9. Measured: at most 0.08 %
     // (en) and 0.16 % (du) at the coarsest steps, 0.02 % and 0.12 % at tc/10.
     // Without the pull on the overlap (exactCollisionStep) one phase in six
     // missed en by 7 % at tc/5 (vn 1 m/s): the end step never ran.
@@ -311,21 +311,25 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
     // friction per step by mu times the law's mean |Fn| over the step's part of
     // the contact: for Table 3.1's pairs that bound never binds here and the
     // contact restitutes the requested en and et (measured: 3e-4 at worst, pairs;
-    // round-off on walls; at tc/100 it binds for a phase: -1.5 %, not run
-    // here), which this test asks within the 0.5 % at
-    // tc/10 and 1 % at the coarsest steps, limitForce off and on; so for
-    // en 0.3 / et 0.8 with limitForce on.
+    // round-off on walls), which this test asks within the 0.5 % target at
+    // tc/10 to tc/40 and 1 % at the coarser steps, limitForce off and on; so
+    // for en 0.3 / et 0.8 with limitForce on. Printed, not asserted: tc/100,
+    // where the bound binds for a phase (Table 3.1: -1.6 %).
+    // The law restitutes another et (0.481 with exactCollision's rigid-arm
+    // drive, 0.489 with LIGGGHTS' arms R - overlap/2): exactCollision keeps the
+    // requested et for a contact its per-step bound lets stick.
     // Not asserted, printed: en 0.3 / et 0.8 with limitForce off, where the law
     // slides early (0.476 against 0.8) and the per-step bound catches part of
-    // that slide, more of it the finer the step (worst phase 0 % off et at tc/5,
-    // -4 % at tc/7.3, -16 % at tc/10, -38 % at tc/100: neither et nor the law;
+    // that slide, more of it the finer the step (worst phase on et at tc/5,
+    // -4 % at tc/7.3, -15 % at tc/10, -38 % at tc/100: neither et nor the law;
     // README, exactCollision, limits).
     unsigned seed = 600;
     struct P { double en, et, mu; };
     for (P p : {P{0.56, 0.46, 0.5}, P{0.3, 0.8, 0.5}})
     for (Geometry g : {Geometry::Wall, Geometry::Pair})
     for (bool limitForce : {false, true})
-        for (double ratio : {limitForce ? (p.en < 0.5 ? 6.0 : 5.6) : 5.0, 7.3, 10.0}) {
+        for (double ratio : limitForce ? std::vector<double>{p.en < 0.5 ? 6.0 : 5.6, 7.3, 10.0}
+                                       : std::vector<double>{5.0, 7.3, 10.0, 20.0, 40.0, 100.0}) {
             Case c;
             c.geometry = g;
             c.limitForce = limitForce;
@@ -343,7 +347,7 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
                         "requested en %.2e, et %.2e\n",
                         p.en, p.et, p.mu, name(g).c_str(), limitForce, ratio, ode.tangentialRestitution, wanted.normal,
                         wanted.tangential);
-            if (p.en < 0.5 && !limitForce) continue;  // the known limit above
+            if ((p.en < 0.5 && !limitForce) || ratio > 50.0) continue;  // the known limit above
             const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
             EXPECT_LT(wanted.normal, tolerance) << name(g) << " en " << p.en << " limitForce " << limitForce << " tc/dt " << ratio;
             EXPECT_LT(wanted.tangential, tolerance)
@@ -356,7 +360,7 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
     // Gross sliding (vt/vn 4, mu 0.3, 1 m/s) with et != en, against the
     // continuous law (reference ODE, rigid-arm spring; between two spheres the
     // law's en is not the request: the pull of the tangential motion). Table
-    // 3.1's beads: within the 0.5 % at tc/10 and 1 % at the coarsest
+    // 3.1's beads: within the 0.5 % target at tc/10 and 1 % at the coarsest
     // steps, for en and the contact point's change of tangential velocity du
     // (measured: at most 0.13 % and 0.28 %). Printed, not asserted: en 0.3 /
     // et 0.8, whose du is 0.5-0.85 % off the law at tc/5 and tc/10 alike (not a

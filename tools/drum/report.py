@@ -162,8 +162,8 @@ def markdown(name, rows, reached=()):
         lines += ["", "## Time to the target", "",
                   "The stop rule replayed on each speed's committed series, cut after each snapshot: the first "
                   "snapshot where the averages met the target standard errors with at least this many batches "
-                  "(whole revolutions after the steady start), counted from the speed's start state (7 rpm: from "
-                  "the grid). Minutes on 2 cores: half the CPU time (both ranks busy throughout). The averages "
+                  "(whole revolutions after the steady start), counted from the speed's start state (the first "
+                  "speed's: the study's first state). Minutes on 2 cores: half the CPU time (both ranks busy throughout). The averages "
                   "there beside the speed's final ones (the table above) show what the shorter run would have "
                   "reported. A standard error from 3 batches has 2 degrees of freedom (from 5: 4), and the "
                   "replay stops at the first snapshot where it is small enough, so the shorter runs' error "
@@ -177,10 +177,13 @@ def markdown(name, rows, reached=()):
         lines.append("")
         for b in sorted({b for _, b, _, _, _ in reached}):
             minutes = sorted(30.0 * cpu for _, bb, _, cpu, _ in reached if bb == b and math.isfinite(cpu))
+            missed = sum(1 for _, bb, _, cpu, _ in reached if bb == b and not math.isfinite(cpu))
             if minutes:
                 m = len(minutes)
                 median = minutes[m // 2] if m % 2 else 0.5 * (minutes[m // 2 - 1] + minutes[m // 2])
-                lines.append(f"- {b} batches: median over {m} speeds {median:.0f} minutes on 2 cores.")
+                lines.append(f"- {b} batches: median over {m} speeds {median:.0f} minutes on 2 cores"
+                             + (f" ({missed} more never reached the target: the median without them is low)"
+                                if missed else "") + ".")
     return "\n".join(lines) + "\n"
 
 

@@ -16,7 +16,7 @@ the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the stud
 Rerunning the command continues from what is committed (and from the segments in post/NAME/ of a
 speed in progress); a committed speed with other settings stops it.
 
-A speed can outlast a working session (7 rpm: five revolutions are 43 s simulated, hours of the
+A speed can outlast a working day (7 rpm: five revolutions are 43 s simulated, hours of the
 machine). Every --checkpoint-minutes of wall time (and with --checkpoint-now, at once) the speed
 in progress is checkpointed to docs/drum/NAME/<rpm>rpm/partial/: its last segment's end state, the
 per-snapshot metrics so far (drum_metrics' cache: the snapshots themselves stay in post/) and its
@@ -44,7 +44,7 @@ import report  # noqa: E402
 import study  # noqa: E402
 
 WHO = "steady"
-DEFAULT_TARGETS = {"Hc": 3e-4, "angle": 0.3}  # [m], [deg]: the issue's defaults
+DEFAULT_TARGETS = {"Hc": 3e-4, "angle": 0.3}  # [m], [deg]: the default targets
 # docs/drum/NAME.csv: one row per speed (the metrics' value and standard-error columns follow)
 TABLE = ["rpm", "conventions", "wall", "period_m", "beads", "dt_s", "settle_s", "average_s", "revolutions",
          "batches", "done", "cpu_hours"]
