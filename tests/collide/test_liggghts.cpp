@@ -163,14 +163,15 @@ TEST(Oblique, FiniteFrictionWithEtUnlikeEnFollowsTheLaw)
 // Stock `history` caps only the elastic part against mu |Fn|, which passes
 // through zero when the force turns attractive: the "sticking" impact slips
 // at its end and falls short of et. Its on/off dashpot makes the discrete
-// error larger (measured on a wall: 3.8 % at tc/100, 0.36 % at tc/1000,
-// first order), so it is checked at tc/200 and tc/400.
+// error larger (this impact at one start phase, wall / pair: +2.4 / +1.8 %
+// at tc/100, +0.04 / +0.5 % at tc/1000), so it is checked at tc/200 and tc/400.
 TEST(Oblique, StickingTangentialRestitutionHistory)
 {
     // It converges: the error at tc/200 exceeds that at tc/400 (a single start
     // phase: measured 2.7 and 2.0 times, wall and pair), and each stays within
-    // the first-order estimate from tc/100 (3.8 % there: 1.9 % and 0.95 %)
-    // with half of it again for the phase (measured 1.4 / 1.5 %, 0.5 / 0.8 %).
+    // twice the first-order estimate from the larger tc/100 error (2.4 %:
+    // 1.2 % and 0.6 %; twice for the start phase, which moves a single
+    // impact's error by as much): measured 1.4 / 1.5 %, 0.5 / 0.8 %.
     for (Geometry g : {Geometry::Wall, Geometry::Pair}) {
         double error[2];
         for (int k = 0; k < 2; ++k) {
@@ -186,8 +187,8 @@ TEST(Oblique, StickingTangentialRestitutionHistory)
         }
         std::printf("%s: history's error against its law %.3f %% at tc/200, %.3f %% at tc/400\n", name(g).c_str(),
                     100 * error[0], 100 * error[1]);
-        EXPECT_LT(std::fabs(error[0]), 1.5 * 0.019) << name(g);
-        EXPECT_LT(std::fabs(error[1]), 1.5 * 0.0095) << name(g);
+        EXPECT_LT(std::fabs(error[0]), 2.0 * 0.012) << name(g);
+        EXPECT_LT(std::fabs(error[1]), 2.0 * 0.006) << name(g);
         EXPECT_GT(std::fabs(error[0]), std::fabs(error[1])) << name(g);
     }
 }
