@@ -67,10 +67,11 @@ def stock_file(path, uniform=None, exact_dt=None):
     return path
 
 
-def limits(en, law="nominal"):
-    """`contact_law limit --en EN --law LAW`: {tc_s, en, et, binary_limit_s, guard_s, binary_limit_tc,
-    guard_tc}, the guard on the coefficients LAW applies."""
-    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, "--law", law))[0]
+def limits(en, law="nominal", et=None):
+    """`contact_law limit --en EN [--et ET] --law LAW`: {tc_s, en, et, binary_limit_s, guard_s,
+    binary_limit_tc, guard_tc}, the guard on the coefficients LAW applies (et: en unless given)."""
+    extra = ["--et", et] if et is not None else []
+    return harness.read_csv_text(harness.tool("contact_law", "limit", "--en", en, *extra, "--law", law))[0]
 
 
 def stiffening(en, fraction, law="nominal"):

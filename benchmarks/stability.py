@@ -349,9 +349,7 @@ def section(res):
     exact_rows = res.csv("stability_drum_exact.csv") if res.has("stability_drum_exact.csv") else []
     if exact_rows:
         exact_meta = res.json("stability_drum_exact.json")
-        guard = lambda law, en, et: harness.read_csv_text(harness.tool(  # noqa: E731
-            "contact_law", "limit", "--en", en, "--et", et, "--law", law))[0]["guard_tc"]
-        guards = {law: (guard(law, m["bead_en"], m["bead_et"]), guard(law, m["drum_en"], m["drum_et"]))
+        guards = {law: tuple(common.limits(m[f"{p}_en"], law, et=m[f"{p}_et"])["guard_tc"] for p in ("bead", "drum"))
                   for law in ("exactRestitution", "exactCollision")}
         text += ("**The exact laws on the drum**: for each law a 6 mm slab run for 1 s from the grid at 21 rpm with "
                  "`tangential pournin` and that law (commands below; a state made with another law or tangential model "

@@ -44,6 +44,27 @@ Worst worstOverPhases(const Case& c, const std::string& tag, unsigned seed, doub
     return w;
 }
 
+// The continuous law exactCollision follows (reference ODE, rigid-arm spring,
+// tc/20000).
+Outcome continuousLaw(Case c)
+{
+    c.rigidArmSpring = true;
+    return integrateContactOde(c, 20000);
+}
+
+// An oblique impact at 1 m/s: vt the tangential speed, tc/dt `ratio`.
+Case oblique(Geometry g, bool limitForce, const viscoelastic::ContactParameters& params, double vt, double ratio)
+{
+    Case c;
+    c.geometry = g;
+    c.limitForce = limitForce;
+    c.params = params;
+    c.normalSpeed = 1.0;
+    c.tangentialSpeed = vt;
+    c.dt = params.tc / ratio;
+    return c;
+}
+
 }  // namespace
 
 TEST(ExactCollision, EverySingleHeadOnCollisionRestitutesEn)
@@ -129,9 +150,7 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
             c.normalSpeed = vn;
             c.tangentialSpeed = 0.2 * vn;
             c.dt = c.params.tc / ratio;
-            Case law = c;
-            law.rigidArmSpring = true;
-            const Outcome ode = integrateContactOde(law, 20000);
+            const Outcome ode = continuousLaw(c);
             const std::string tag = "stick_pair" + std::string(limitForce ? "_lf" : "") + std::to_string(int(ratio * 10)) +
                                     "_" + std::to_string(int(vn * 10));
             const Worst w = worstOverPhases(c, tag, seed, ode.restitution, ode.tangentialRestitution);
@@ -221,9 +240,7 @@ TEST(ExactCollision, EverySingleSlidingCollisionFollowsWalton)
             // turns, so the integral of |Fn| is (1 + en) vn
             const double duWalton = limitForce ? 3.5 * c.params.mu * (1.0 + c.params.en) * c.normalSpeed
                                                : (1.0 + cf->outcome.tangentialRestitution) * c.tangentialSpeed;
-            Case law = c;
-            law.rigidArmSpring = true;
-            const double duLaw = (1.0 + integrateContactOde(law, 20000).tangentialRestitution) * c.tangentialSpeed;
+            const double duLaw = (1.0 + continuousLaw(c).tangentialRestitution) * c.tangentialSpeed;
             const std::vector<double> phases = randomPhases(12, seed++);
             const std::vector<Trajectory> runs =
                 runLiggghts(c, options("sliding_" + name(g) + std::to_string(int(ratio * 10)) + (limitForce ? "_lf" : ""),
@@ -275,9 +292,7 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
                 c.normalSpeed = im.vn;
                 c.tangentialSpeed = im.slope * im.vn;
                 c.dt = c.params.tc / ratio;
-                Case law = c;
-                law.rigidArmSpring = true;
-                const Outcome ode = integrateContactOde(law, 20000);
+                const Outcome ode = continuousLaw(c);
                 const double duLaw = (1.0 + ode.tangentialRestitution) * c.tangentialSpeed;
                 // gross sliding: the contact point's tangential velocity keeps its sign
                 ASSERT_GT(ode.tangentialRestitution, -1.0 + 0.2) << "not sliding throughout";
@@ -330,16 +345,8 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
     for (bool limitForce : {false, true})
         for (double ratio : limitForce ? std::vector<double>{p.en < 0.5 ? 6.0 : 5.6, 7.3, 10.0}
                                        : std::vector<double>{5.0, 7.3, 10.0, 20.0, 40.0, 100.0}) {
-            Case c;
-            c.geometry = g;
-            c.limitForce = limitForce;
-            c.params = {1e-4, p.en, p.et, p.mu};
-            c.normalSpeed = 1.0;
-            c.tangentialSpeed = 0.2;
-            c.dt = c.params.tc / ratio;
-            Case law = c;
-            law.rigidArmSpring = true;
-            const Outcome ode = integrateContactOde(law, 20000);
+            const Case c = oblique(g, limitForce, {1e-4, p.en, p.et, p.mu}, 0.2, ratio);
+            const Outcome ode = continuousLaw(c);
             const std::string tag = "fric_" + name(g) + (limitForce ? "_lf" : "") + std::to_string(int(ratio * 10)) +
                                     "_" + std::to_string(int(p.et * 10));
             const Worst wanted = worstOverPhases(c, tag, seed++, c.params.en, c.params.et);
@@ -373,16 +380,8 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
     for (Geometry g : {Geometry::Wall, Geometry::Pair})
     for (bool limitForce : {false, true})
         for (double ratio : {limitForce ? 6.0 : 5.0, 10.0}) {
-            Case c;
-            c.geometry = g;
-            c.limitForce = limitForce;
-            c.params = {1e-4, p.en, p.et, 0.3};
-            c.normalSpeed = 1.0;
-            c.tangentialSpeed = 4.0;
-            c.dt = c.params.tc / ratio;
-            Case law = c;
-            law.rigidArmSpring = true;
-            const Outcome ode = integrateContactOde(law, 20000);
+            const Case c = oblique(g, limitForce, {1e-4, p.en, p.et, 0.3}, 4.0, ratio);
+            const Outcome ode = continuousLaw(c);
             const std::vector<double> phases = randomPhases(12, seed++);
             const std::vector<Trajectory> runs = runLiggghts(
                 c, options("slide_etne_" + name(g) + std::to_string(int(ratio * 10)) + (limitForce ? "_lf" : "") +

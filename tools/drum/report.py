@@ -86,9 +86,9 @@ def time_to_target(series, run, rpm, dt, min_batches):
     columns = ["step"] + list(series[0].keys())
     with tempfile.TemporaryDirectory() as tmp:
         cache = Path(tmp) / "cache.csv"
-        for n in range(1, len(series) + 1):
-            if n * spacing < min_batches * revolution * (1 - 1e-9):
-                continue  # fewer samples than that many whole revolutions hold
+        # fewer samples than min_batches whole revolutions hold cannot be done
+        first = max(1, math.ceil(min_batches * revolution / spacing * (1 - 1e-9)))
+        for n in range(first, len(series) + 1):
             with open(cache, "w") as f:  # drum_metrics reads '\n' line ends
                 csv.writer(f, lineterminator="\n").writerows(
                     [columns] + [[round(float(r["time_s"]) / dt), *(repr(v) if isinstance(v, float) else v
