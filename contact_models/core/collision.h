@@ -95,6 +95,12 @@ struct StepLaw {
     // the pull (endA, aheadA, frictionA), and the leapfrog-exact force one,
     // forceA pull (kStep / k - 1: -3 % of the pull at tc/5).
     double endA = 0, aheadA = 0, frictionA = 0, forceA = 0;
+    // The law's force along the continuous motion at this sample and one step
+    // on (X x_n + V v_{n-1/2} + A pull): where the tangential cap mu |Fn| stands.
+    double nowX = 0, nowV = 0, nowA = 0, nextX = 0, nextV = 0, nextA = 0;
+    // As a tangential oscillator: the force k xi + c u one step on from the
+    // spring and rate the step law gives there (phiX xi_{n+1} + phiV w_{n+1/2}).
+    double phiX = 0, phiV = 0;
     // What ends the contact, one step on, must exceed endMargin x_n to go on:
     // a next sample on the surface within round-off would fall to or below
     // zero in the leapfrog, and the end step (its exit rate, its friction)
@@ -144,6 +150,9 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.aheadA = s.aheadX / k - 1.0;
     s.frictionA = s.frictionX / k - 1.0;
     s.forceA = s.kStep / k - 1.0;
+    s.nowX = k + c * s.uX, s.nowV = c * s.uV, s.nowA = s.nowX / k - 1.0;
+    s.nextX = s.o.ending(fromX, true), s.nextV = s.o.ending(fromV, true), s.nextA = s.nextX / k - 1.0;
+    s.phiX = s.nowX, s.phiV = s.nowV;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.endGoX = s.endX - s.endMargin;
     s.inverseDt = 1.0 / dt;
@@ -180,6 +189,14 @@ struct CollisionStep {
     // (The step's own force is not that mean: it nets the repulsive and
     // attractive parts where the force turns, and it corrects the start.)
     double friction = 0;
+    // For the tangential cap: whether the contact follows the continuous
+    // motion (not held, not ended), that motion at this sample (of x + pull /
+    // k, free), the pull, and the law's force (per unit mass) at this sample
+    // and one step on.
+    bool continuous = false;
+    Motion now{0.0, 0.0};
+    double pull = 0, forceNow = 0, forceNext = 0;
+    double meff = 1;  // the mass the caller scales these by (the cap is mu meff |Fn|)
 };
 
 namespace detail {
@@ -374,6 +391,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         now = {x + shift, law.uX * (x + shift) + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
+    r.continuous = true, r.now = now, r.pull = pull;
+    r.forceNow = law.o.ending(now, true) - pull;
     // this step's part of the contact: from the touch, or half a step back
     const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;
     const Motion start = r.sinceStart >= 0.0 ? touch : law.o.after(now, law.flowBack);
@@ -384,6 +403,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // (the leapfrog moves the rate by -dt (force + pull))
     const Motion ahead = law.o.after(now, law.flowStep);
     const double endAhead = endingAndSlope(ahead).first;
+    r.forceNext = law.o.ending(ahead, true) - pull;
     if (endAhead > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
         r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
@@ -441,14 +461,16 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
             state.previousOffset = 0.0;
             CollisionStep r;
             r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
+            r.continuous = true, r.pull = pull;
+            const double shifted = x + pull / law.o.k;
+            r.now = {shifted, law.uX * shifted + law.uV * vUsed};
+            r.forceNow = law.nowX * x + law.nowV * vUsed + law.nowA * pull;
+            r.forceNext = law.nextX * x + law.nextV * vUsed + law.nextA * pull;
             // of the force over the step
             const double mean = law.frictionX * x + law.frictionV * vUsed + law.frictionA * pull;
             if (attractive) r.friction = -mean;
             else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed + law.aheadA * pull >= 0.0) r.friction = mean;
-            else {
-                const double shifted = x + pull / law.o.k;
-                r.friction = frictionOverStep(law, state, {shifted, law.uX * shifted + law.uV * vUsed}, pull);
-            }
+            else r.friction = frictionOverStep(law, state, r.now, pull);
             return r;
         }
     }
@@ -592,6 +614,234 @@ inline Vec3 pourninExactTangentialForce(TangentialState& s, const Vec3& n, const
     }
     if (advance) s.xi = xi, s.normal = n;
     return f;
+}
+
+// The tangential law with its instantaneous Coulomb cap, followed exactly
+// over a step. The continuous law caps the spring's force k xi + c u (per
+// unit tangential mass) at kappa |Fn(t)|, Fn the normal force along the
+// continuous normal motion (kappa = mu meff / m_t): sticking, (xi, u) is a
+// free damped oscillator; sliding in direction s, u' = -kappa |Fn| s and the
+// spring sits on the cap, xi = (kappa |Fn| s - c u) / k. Sliding starts where
+// |k xi + c u| reaches the cap (before a zero of Fn, which takes the cap to
+// zero: without limitForce the spring lets go near the end of every contact
+// whatever mu), and stops where the free spring would unload faster than the
+// cap falls: k u.s - c cap < cap'. Both pieces are closed forms (the free
+// flow; the integrals of Fn along the normal's free motion), joined at the
+// roots of those two conditions.
+struct TangentialMotion {
+    Vec3 xi, u;
+};
+
+// The normal contact's continuous motion as the cap sees it.
+struct CapSource {
+    const FreeOscillator* normal;
+    Motion now;    // at 0, of x + pull / k (free)
+    double pull;   // Fn = k x + c u - pull along it
+    double kappa;  // the cap is kappa |Fn|
+    Motion at(double t) const { return normal->after(now, t); }
+    double force(const Motion& m) const { return normal->ending(m, true) - pull; }
+    // The cap's rate, |Fn|' (at a zero of Fn: the rate at which it leaves zero).
+    double capRate(const Motion& m, double fn) const
+    {
+        const double rate = normal->forceRate(m);
+        return kappa * ((fn > 0.0 || (fn == 0.0 && rate > 0.0)) ? rate : -rate);
+    }
+};
+
+struct CappedFlow {
+    TangentialMotion end;
+    Vec3 displacement;  // the integral of u: how far the contact point moved
+    bool stuck;         // free throughout: the cap never bound
+};
+
+namespace detail {
+
+inline TangentialMotion freeTangential(const FreeOscillator& o, const TangentialMotion& m, const FreeOscillator::Flow& f)
+{
+    return {f.e * (m.xi * f.co + (m.u + o.lambda * m.xi) * f.si), f.e * (m.u * f.co - (o.lambda * m.u + o.k * m.xi) * f.si)};
+}
+
+}  // namespace detail
+
+// The tangential motion from `m` at time a to time b (a <= b, b - a under
+// half the normal's period: Fn turns at most once in between).
+inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const CapSource& src, double a, double b)
+{
+    CappedFlow r{m, Vec3::Zero(), true};
+    double t = a;
+    Motion mn = src.at(a);
+    double fn = src.force(mn);
+    Vec3 dir = Vec3::Zero();  // the sliding direction, kept through the cap's zero
+    // just stuck again, or just reached the cap: sticking, or sliding,
+    // whatever round-off says (a root in time leaves the force off the cap
+    // by the root's tolerance times the cap's rate, large for a large mu)
+    bool restuck = false, onset = false;
+    const auto capAt = [&](double f) { return src.kappa * std::fabs(f); };
+    // where Fn turns in (t, b]: b + 1 if it does not
+    const auto zeroOfFn = [&](double from, double fFrom, const Motion& mFrom) {
+        const Motion mb = src.at(b);
+        const double fb = src.force(mb);
+        if (!(fFrom * fb < 0.0)) return b + 1.0;
+        const auto fs = [&](double tau) {
+            const Motion q = src.at(tau);
+            return std::make_pair(src.force(q), src.normal->forceRate(q));
+        };
+        (void)mFrom;
+        return detail::bracketedNewton(fs, from, b, fFrom, from + (b - from) * fFrom / (fFrom - fb));
+    };
+    for (int event = 0; event < 8 && t < b; ++event) {
+        const double cap = capAt(fn);
+        const Vec3 phi = o.k * m.xi + o.c * m.u;
+        const double p = phi.norm();
+        bool sliding = false;
+        if (onset || (!restuck && p >= cap * (1.0 - 1e-9))) {
+            // at the cap's zero the force is zero up to round-off, whose
+            // direction is noise: the slide keeps its direction through it
+            if (p > 1e-9 * (o.k * m.xi.norm() + o.c * m.u.norm())) dir = phi / p;
+            else if (dir.squaredNorm() == 0.0 && m.u.squaredNorm() > 0.0) dir = m.u.normalized();
+            if (p > cap) m.xi = (cap * dir - o.c * m.u) / o.k, r.stuck = false;  // onto the cap
+            sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, fn);
+        }
+        restuck = onset = false;
+        const double zero = zeroOfFn(t, fn, mn);
+        const double end = std::min(zero, b);
+        if (!sliding) {
+            const auto free = [&](double tau) { return detail::freeTangential(o, m, o.flow(tau - t)); };
+            // the cap at tau: exactly zero at Fn's zero (where the root's
+            // round-off times a large mu could otherwise exceed the spring)
+            const auto capThen = [&](double tau) { return tau >= zero ? 0.0 : capAt(src.force(src.at(tau))); };
+            const auto over = [&](double tau) {  // |k xi + c u| over the cap at tau
+                const TangentialMotion q = free(tau);
+                return (o.k * q.xi + o.c * q.u).norm() - capThen(tau);
+            };
+            const TangentialMotion q = free(end);
+            const double overEnd = (o.k * q.xi + o.c * q.u).norm() - capThen(end);
+            double to = end;
+            if (overEnd > 0.0) {
+                to = detail::bracketedRoot([&](double tau) { return tau == t ? std::min(over(tau), 0.0) : over(tau); }, t, end);
+                r.stuck = false, onset = true;
+            }
+            const TangentialMotion next = to == end ? q : free(to);
+            r.displacement += next.xi - m.xi;
+            m = next, t = to;
+        } else {
+            // sliding: u(tau) = u(t) - kappa s I1, I1 = |int_t^tau Fn| (Fn of one sign)
+            r.stuck = false;
+            const Motion from = mn;
+            const auto impulse = [&](const Motion& q, double tau) { return std::fabs(from.u - q.u - src.pull * (tau - t)); };
+            const auto unload = [&](double tau) {  // > 0: still sliding at tau
+                const Motion q = src.at(tau);
+                const double f = tau >= zero ? 0.0 : src.force(q);
+                const double u = m.u.dot(dir) - src.kappa * impulse(q, tau);
+                return o.k * u - o.c * capAt(f) - src.capRate(q, f);
+            };
+            double to = end;
+            if (!(unload(end) > 0.0)) {
+                const double here = unload(t);
+                to = here > 0.0 ? detail::bracketedRoot(unload, t, end) : t;
+                restuck = true;
+            }
+            if (to > t) {
+                const Motion q = src.at(to);
+                const double span = to - t;
+                // the double integral of Fn: u_n(t) span - (x(to) - x(t)) - pull span^2 / 2
+                const double twice = std::fabs(from.u * span - (q.x - from.x) - 0.5 * src.pull * span * span);
+                r.displacement += m.u * span - src.kappa * twice * dir;
+                m.u -= src.kappa * impulse(q, to) * dir;
+                m.xi = ((to >= zero ? 0.0 : capAt(src.force(q))) * dir - o.c * m.u) / o.k;
+                t = to;
+            }
+        }
+        mn = src.at(t);
+        fn = src.force(mn);
+        if (t >= zero) fn = 0.0;  // exactly at the zero: the cap is zero there
+    }
+    if (t < b) {  // more events than expected: the rest as the reference steps it
+        const TangentialMotion q = detail::freeTangential(o, m, o.flow(b - t));
+        r.displacement += q.xi - m.xi;
+        m = q;
+        const double cap = capAt(src.force(src.at(b)));
+        const Vec3 phi = o.k * m.xi + o.c * m.u;
+        if (phi.norm() > cap) m.xi = (cap * phi.normalized() - o.c * m.u) / o.k, r.stuck = false;
+    }
+    r.end = m;
+    return r;
+}
+
+// `tangential pournin` under exactCollision with the cap followed exactly:
+// what pourninExactTangentialForce does, where the contact follows the
+// continuous normal motion (normal.continuous). The leapfrog's rate over the
+// step is the contact point's mean rate, so the next sample lies on the
+// continuous spring; where the cap bound within the step the samples no
+// longer define the continuous rate, and the state keeps the difference
+// (rateOffset, offPath) for the next step. The common step (sticking, on the
+// samples' oscillator, the cap clear one step on) costs the plain step law
+// and a check. `muMeff`: mu times the contact's meff (the cap per unit Fn).
+struct ExactTangentialState {
+    Vec3 rateOffset = Vec3::Zero();
+    bool offPath = false;
+};
+
+[[gnu::noinline]] inline Vec3 cappedTangentialStep(ExactTangentialState& e, Vec3& xi, const Vec3& w, const StepLaw& law,
+                                                   const StepLaw& normalLaw, const CollisionStep& normal, double kappa)
+{
+    const double dt = law.dt;
+    const CapSource src{&normalLaw.o, normal.now, normal.pull, kappa};
+    TangentialMotion at;
+    bool stuck = true;
+    if (normal.sinceStart >= 0.0) {  // from first touch, at the free flight's rate
+        const CappedFlow before = cappedFlow(law.o, {Vec3::Zero(), w}, src, -normal.sinceStart, 0.0);
+        at = before.end, stuck = before.stuck;
+    } else {
+        at = {xi, law.uX * xi + law.uV * w + (e.offPath ? e.rateOffset : Vec3::Zero())};
+    }
+    if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
+        const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter);
+        e = {};
+        return (last.end.u - w) / dt;
+    }
+    const CappedFlow step = cappedFlow(law.o, at, src, 0.0, dt);
+    const Vec3 next = step.displacement / dt;  // w_{n+1/2}
+    xi = step.end.xi - step.displacement;      // the next step adds dt w_{n+1/2}
+    e.offPath = !(stuck && step.stuck);
+    e.rateOffset = e.offPath ? Vec3(step.end.u - (law.uX * step.end.xi + law.uV * next)) : Vec3::Zero();
+    return (next - w) / dt;
+}
+
+// The tangential force of a contact under exactCollision. Where the normal
+// contact follows its continuous motion, the cap is the law's instantaneous
+// mu |Fn(t)| (cappedTangentialStep; the common step inline); held or ended,
+// the per-step bound `limit` (mu times the step's mean |Fn|) caps the step
+// law's force.
+inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, const Vec3& n, const Vec3& vt, double mt,
+                                 const StepLaw& law, const StepLaw& normalLaw, const CollisionStep& normal,
+                                 double muMeff, double limit, bool advance)
+{
+    if (!normal.continuous) {
+        e = {};
+        return pourninExactTangentialForce(s, n, vt, mt, law, normal, limit, advance);
+    }
+    const bool turned = s.normal.squaredNorm() > 0.0;
+    Vec3 xi = turned ? rotateWithNormal(s.xi, s.normal, n) : s.xi;
+    xi += vt * law.dt;
+    xi -= xi.dot(n) * n;
+    const double kappa = muMeff / mt;
+    Vec3 a;
+    bool common = !e.offPath && std::max(normal.sinceStart, normal.endsAfter) < 0.0 && normal.forceNow * normal.forceNext > 0.0;
+    if (common) {
+        a = -(law.kStep * xi + law.cStep * vt);
+        const Vec3 next = vt + law.dt * a;
+        const Vec3 phi = law.phiX * (xi + law.dt * next) + law.phiV * next;
+        const double cap = kappa * normal.forceNext;
+        common = phi.squaredNorm() <= cap * cap;
+    }
+    ExactTangentialState ee = e;
+    if (!common) {
+        if (turned && ee.offPath) ee.rateOffset = rotateWithNormal(ee.rateOffset, s.normal, n);
+        a = cappedTangentialStep(ee, xi, vt, law, normalLaw, normal, kappa);
+    }
+    if (advance) s.xi = xi, s.normal = n, e = ee;
+    return mt * a;
 }
 
 // The coefficients a contact under way applies (the step laws), per unit

@@ -55,6 +55,7 @@ public:
         if (!exactCollision) return;
         history_offset = hsetup->add_history_value("viscoelastic_phase", "0");
         hsetup->add_history_value("viscoelastic_offset", "0");
+        cmb->add_history_offset("viscoelastic_phase", history_offset);  // tangential pournin then keeps more
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -154,6 +155,7 @@ private:
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]
+        forTangential.meff = meff;
         table.setCollisionStep(forTangential);
         return meff * step.force;
     }

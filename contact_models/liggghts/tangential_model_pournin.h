@@ -39,7 +39,17 @@ public:
     }
 
     void registerSettings(Settings&) {}
-    void postSettings(IContactHistorySetup*, ContactModelBase*) {}
+    // exactCollision (model viscoelastic registered its state first): the
+    // continuous rate's offset from the samples' where the cap bound within a
+    // step (h[6], unused then, flags it). Only then: restart files of the
+    // other settings keep their contact history.
+    void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
+    {
+        if (cmb->get_history_offset("viscoelastic_phase") < 0) return;
+        rate_offset = hsetup->add_history_value("pournin_rate_x", "1");
+        hsetup->add_history_value("pournin_rate_y", "1");
+        hsetup->add_history_value("pournin_rate_z", "1");
+    }
 
     void connectToProperties(PropertyRegistry& registry)
     {
@@ -71,11 +81,15 @@ public:
         Vec3 Ft;
         // h[6], the unclipped normal force of the step before, serves the
         // nominal spring only
+        viscoelastic::ExactTangentialState e;
         if (exact) {
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
-            Ft = viscoelastic::pourninExactTangentialForce(state, normal, drive.rate, drive.mass,
-                                                           t->collision(sidata.itype, sidata.jtype).tangential,
-                                                           t->collisionStep(), limit, advance);
+            const double* const r = &sidata.contact_history[rate_offset];
+            e.offPath = h[6] != 0.0, e.rateOffset = Vec3(r[0], r[1], r[2]);
+            const auto& laws = t->collision(sidata.itype, sidata.jtype);
+            const viscoelastic::CollisionStep& step = t->collisionStep();
+            Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
+                                                    step, mu * step.meff, limit, advance);
         } else {
             state.normalForce = h[6];
             Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
@@ -88,6 +102,11 @@ public:
                 h[3 + d] = state.normal[d];
             }
             if (!exact) h[6] = state.normalForce;
+            else {
+                h[6] = e.offPath ? 1.0 : 0.0;
+                double* const r = &sidata.contact_history[rate_offset];
+                for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
+            }
         }
 
         // Torque about each centre from the force at the contact point.
@@ -109,6 +128,8 @@ public:
         if (!scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
         for (int d = 0; d < 7; ++d) h[d] = 0.0;
+        if (rate_offset >= 0)
+            for (int d = 0; d < 3; ++d) scdata.contact_history[rate_offset + d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -145,6 +166,7 @@ private:
     bool looked_ = false;
     ContactModelBase* cmb;
     int history_offset;
+    int rate_offset = -1;
 };
 
 }  // namespace LIGGGHTS::ContactModels

@@ -65,6 +65,21 @@ Case oblique(Geometry g, bool limitForce, const viscoelastic::ContactParameters&
     return c;
 }
 
+// The law's et on a wall for a contact that sticks but where its cap mu |Fn|
+// passes through zero (limitForce off, et != en): Pournin's tangential
+// oscillator from (0, 1) until the normal force's zero, where the spring lets
+// go of its force (xi = -c u / k), then free until the overlap ends at tc. A
+// closed form, independent of the steps.
+double etWithSpringLetGo(const viscoelastic::ContactParameters& p)
+{
+    using namespace viscoelastic;
+    const auto o = exactCollisionOscillators(p, false);
+    const double zero = o->normal.forceZeroFrom({0.0, 1.0}, 0.0);
+    Motion t = o->tangential.after({0.0, 1.0}, zero);
+    t.x = -o->tangential.c * t.u / o->tangential.k;
+    return -o->tangential.after(t, p.tc - zero).u;
+}
+
 }  // namespace
 
 TEST(ExactCollision, EverySingleHeadOnCollisionRestitutesEn)
@@ -87,14 +102,19 @@ TEST(ExactCollision, EverySingleHeadOnCollisionRestitutesEn)
             }
 }
 
-TEST(ExactCollision, EverySingleStickingCollisionOnAWallRestitutesEt)
+TEST(ExactCollision, EverySingleStickingCollisionOnAWallFollowsItsLaw)
 {
-    // Sticking to the end (mu 1e6; vt/vn 0.2) on a wall, at vn 0.1 and 1 m/s.
+    // Sticking (mu 1e6; vt/vn 0.2) on a wall, at vn 0.1 and 1 m/s. Without
+    // limitForce the cap mu |Fn| passes through zero at the normal force's
+    // zero, where the spring (et 0.3 != en 0.56) lets go of its force whatever
+    // mu: against etWithSpringLetGo (0.344), a closed form. With it the
+    // force and its cap end together: et. Tolerance 1e-7: the slide before the
+    // cap's zero lasts about 1 / mu of the contact (1.5e-8 to 2.5e-8 seen).
     // The spring follows the contact point at the rigid arm R: LIGGGHTS' arm
     // R - overlap/2 shortens during the contact and would move the contact
     // point of the spinning sphere without any force (driven at that arm:
     // +0.14 % at 0.1 m/s, +1.3 % at 1 m/s). The normal does not turn, so the
-    // scheme is exact: round-off (1e-13 seen). Tolerance 1e-9.
+    // scheme is exact: round-off (1e-13 seen for en).
     // With limitForce on the spring runs as long as the force (exactCollision
     // solves it for that duration), and the multi-contact guard admits
     // tc/5.6 at the coarsest for et 0.3 (its stiffer tangential law).
@@ -110,11 +130,12 @@ TEST(ExactCollision, EverySingleStickingCollisionOnAWallRestitutesEt)
                 c.normalSpeed = vn;
                 c.tangentialSpeed = 0.2 * vn;
                 c.dt = c.params.tc / ratio;
+                const double etLaw = limitForce ? c.params.et : etWithSpringLetGo(c.params);
                 const Worst w = worstOverPhases(c, "stick_" + name(g) + std::string(limitForce ? "_lf" : "") +
                                                        std::to_string(int(ratio * 10)) + "_" + std::to_string(int(vn * 10)),
-                                                seed++, c.params.en, c.params.et);
+                                                seed++, c.params.en, etLaw);
                 EXPECT_LT(w.normal, 1e-9) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio << " vn " << vn;
-                EXPECT_LT(w.tangential, 1e-9) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio << " vn "
+                EXPECT_LT(w.tangential, 1e-7) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio << " vn "
                                               << vn;
                 std::printf("%s limitForce %d vn %.1f tc/dt %.1f: worst normal %.2e, tangential %.2e\n",
                             name(g).c_str(), limitForce, vn, ratio, w.normal, w.tangential);
@@ -134,7 +155,10 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
     // and 1 m/s): the spring driven at the plain contact point (no orbital
     // factor) missed its own law by 0.3 to 1.2 vn dt / R (9.5e-4 at tc/10),
     // and, worse, restituted et + 1.6 % at 1 m/s.
-    // Against the requested et: the 0.5 % target at tc/10 and 1 % at tc/5.
+    // Against the requested et (limitForce on): the 0.5 % target at tc/10 and
+    // 1 % at tc/5. Without limitForce the law's cap mu |Fn| passes through zero
+    // near the end, where the spring (et 0.3 != en 0.56) still holds force and
+    // lets go of it whatever mu: the law restitutes 0.344, not 0.3.
     // limitForce on: the reference is exactCollision's cut law (the
     // oscillators solved for en and tc, the spring as long as the force);
     // tc/5.6 is the coarsest step the guard admits.
@@ -158,8 +182,9 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
             const double scale = vn * c.dt / c.radius1, bound = 1e-4 + 0.01 * scale;
             EXPECT_LT(w.normal, bound) << "limitForce " << limitForce << " tc/dt " << ratio << " vn " << vn;
             EXPECT_LT(w.tangential, bound) << "limitForce " << limitForce << " tc/dt " << ratio << " vn " << vn;
-            EXPECT_LT(wanted.tangential, ratio < 9.0 ? 0.01 : 0.005)
-                << "limitForce " << limitForce << " tc/dt " << ratio << " vn " << vn;
+            if (limitForce)
+                EXPECT_LT(wanted.tangential, ratio < 9.0 ? 0.01 : 0.005)
+                    << "limitForce " << limitForce << " tc/dt " << ratio << " vn " << vn;
             std::printf("pair limitForce %d vn %.1f tc/dt %.1f: law en %.6f et %.6f; worst normal %.2e, tangential %.2e "
                         "(vn dt / R %.2e); against the requested en, et: %.2e, %.2e\n",
                         limitForce, vn, ratio, ode.restitution, ode.tangentialRestitution, w.normal, w.tangential, scale,
@@ -170,8 +195,10 @@ TEST(ExactCollision, EverySingleStickingPairCollisionFollowsItsLaw)
 TEST(ExactCollision, ReferenceRigidArmSpringIsPourninsOscillatorOnAWall)
 {
     // The pair test's reference: on a wall (no turning frame) its law is
-    // Pournin's tangential oscillator, et at any speed. Tolerance: the ODE's
-    // contact start between its steps (1.2e-5 seen at tc/20000).
+    // Pournin's tangential oscillator letting go of its force at the normal
+    // force's zero (etWithSpringLetGo: 0.344 for et 0.3), at any speed.
+    // Tolerance: the ODE's contact start between its steps (1.2e-5 seen at
+    // tc/20000).
     for (double vn : {0.1, 1.0}) {
         Case c;
         c.geometry = Geometry::Wall;
@@ -179,7 +206,7 @@ TEST(ExactCollision, ReferenceRigidArmSpringIsPourninsOscillatorOnAWall)
         c.normalSpeed = vn;
         c.tangentialSpeed = 0.2 * vn;
         c.rigidArmSpring = true;
-        EXPECT_NEAR(integrateContactOde(c, 20000).tangentialRestitution, 0.3, 3e-5) << "vn " << vn;
+        EXPECT_NEAR(integrateContactOde(c, 20000).tangentialRestitution, etWithSpringLetGo(c.params), 3e-5) << "vn " << vn;
     }
 }
 
@@ -187,9 +214,10 @@ TEST(ExactCollision, ReferenceRigidArmSpringOnAPairMissesEtOnlyByTheCentrifugalS
 {
     // A pair's tangential motion pulls the centres apart (vt^2 / d), so its
     // contact ends earlier than tc and cuts the tangential oscillator short:
-    // et rises by about K (vt^2 / vn) tc / R, measured K = 0.15 (0.1-3 m/s,
-    // vt/vn 0.2 and 1; vt the relative tangential speed of the centres;
-    // equal spheres: with R2 = R1/3, denser, K reached 0.23).
+    // et rises above the wall's law by about K (vt^2 / vn) tc / R, measured
+    // K = 0.05-0.08 (0.1 and 1 m/s, vt/vn 0.2 and 1; vt the relative
+    // tangential speed of the centres; the same law without letting go at
+    // the force's zero gave K = 0.15, and up to 0.23 with R2 = R1/3, denser).
     // Bound: K = 0.25, plus the ODE's 3e-5. The spring driven at the plain
     // contact point (no orbital factor) is off by 1.6 % at vn 1 m/s, vt/vn
     // 0.2, 24 times this bound.
@@ -203,9 +231,10 @@ TEST(ExactCollision, ReferenceRigidArmSpringOnAPairMissesEtOnlyByTheCentrifugalS
             c.rigidArmSpring = true;
             const double centrifugal = c.tangentialSpeed * c.tangentialSpeed / vn * c.params.tc / c.radius1;
             const double et = integrateContactOde(c, 20000).tangentialRestitution;
-            EXPECT_LT(std::fabs(et / c.params.et - 1.0), 3e-5 + 0.25 * centrifugal) << "vn " << vn << " vt/vn " << slope;
-            std::printf("pair law vn %.1f vt/vn %.1f: et %.6f, (et/0.3 - 1) / ((vt^2/vn) tc/R) = %.3f\n", vn, slope, et,
-                        (et / c.params.et - 1.0) / centrifugal);
+            const double wall = etWithSpringLetGo(c.params);
+            EXPECT_LT(std::fabs(et / wall - 1.0), 3e-5 + 0.25 * centrifugal) << "vn " << vn << " vt/vn " << slope;
+            std::printf("pair law vn %.1f vt/vn %.1f: et %.6f, (et/%.6f - 1) / ((vt^2/vn) tc/R) = %.3f\n", vn, slope, et,
+                        wall, (et / wall - 1.0) / centrifugal);
         }
 }
 
@@ -319,25 +348,16 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
 
 TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
 {
-    // Table 3.1's friction (mu 0.5) at small incidence (vt/vn 0.2, 1 m/s), et != en.
-    // The continuous law slides at the end of such a contact (its cap mu |Fn|
-    // passes through zero while the spring holds force): it restitutes 0.481
-    // for Table 3.1's et 0.46 (rigid-arm spring, wall). exactCollision bounds
-    // friction per step by mu times the law's mean |Fn| over the step's part of
-    // the contact: for Table 3.1's pairs that bound never binds here and the
-    // contact restitutes the requested en and et (measured: 3e-4 at worst, pairs;
-    // round-off on walls), which this test asks within the 0.5 % target at
-    // tc/10 to tc/40 and 1 % at the coarser steps, limitForce off and on; so
-    // for en 0.3 / et 0.8 with limitForce on. Printed, not asserted: tc/100,
-    // where the bound binds for a phase (Table 3.1: -1.6 %).
-    // The law restitutes another et (0.481 with exactCollision's rigid-arm
-    // drive, 0.489 with LIGGGHTS' arms R - overlap/2): exactCollision keeps the
-    // requested et for a contact its per-step bound lets stick.
-    // Not asserted, printed: en 0.3 / et 0.8 with limitForce off, where the law
-    // slides early (0.476 against 0.8) and the per-step bound catches part of
-    // that slide, more of it the finer the step (worst phase on et at tc/5,
-    // -4 % at tc/7.3, -15 % at tc/10, -38 % at tc/100: neither et nor the law;
-    // README, exactCollision, limits).
+    // Table 3.1's friction (mu 0.5) at small incidence (vt/vn 0.2, 1 m/s), et
+    // != en, against the continuous law (reference ODE, rigid-arm spring).
+    // The law slides near the end of such a contact: its cap mu |Fn| passes
+    // through zero while the spring holds force (limitForce off), and it
+    // restitutes 0.481 for Table 3.1's et 0.46 and 0.476 for en 0.3 / et 0.8;
+    // with limitForce the cap falls with the force, more slowly than the
+    // spring's force, and the law gives 0.466 and 0.803. exactCollision follows
+    // the instantaneous cap through the step (cappedFlow): every start phase
+    // within the 0.5 % target of the law at tc/10 and finer, 1 % at the
+    // coarser steps, for en and et, pair and wall, limitForce off and on.
     unsigned seed = 600;
     struct P { double en, et, mu; };
     for (P p : {P{0.56, 0.46, 0.5}, P{0.3, 0.8, 0.5}})
@@ -349,15 +369,14 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
             const Outcome ode = continuousLaw(c);
             const std::string tag = "fric_" + name(g) + (limitForce ? "_lf" : "") + std::to_string(int(ratio * 10)) +
                                     "_" + std::to_string(int(p.et * 10));
-            const Worst wanted = worstOverPhases(c, tag, seed++, c.params.en, c.params.et);
-            std::printf("en %.2f et %.2f mu %.1f, %s, limitForce %d, tc/dt %.1f: the law's et %.5f; worst against the "
-                        "requested en %.2e, et %.2e\n",
-                        p.en, p.et, p.mu, name(g).c_str(), limitForce, ratio, ode.tangentialRestitution, wanted.normal,
-                        wanted.tangential);
-            if ((p.en < 0.5 && !limitForce) || ratio > 50.0) continue;  // the known limit above
+            const Worst law = worstOverPhases(c, tag, seed++, ode.restitution, ode.tangentialRestitution);
+            std::printf("en %.2f et %.2f mu %.1f, %s, limitForce %d, tc/dt %.1f: the law's en %.5f et %.5f; worst "
+                        "against the law: en %.2e, et %.2e\n",
+                        p.en, p.et, p.mu, name(g).c_str(), limitForce, ratio, ode.restitution,
+                        ode.tangentialRestitution, law.normal, law.tangential);
             const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
-            EXPECT_LT(wanted.normal, tolerance) << name(g) << " en " << p.en << " limitForce " << limitForce << " tc/dt " << ratio;
-            EXPECT_LT(wanted.tangential, tolerance)
+            EXPECT_LT(law.normal, tolerance) << name(g) << " en " << p.en << " limitForce " << limitForce << " tc/dt " << ratio;
+            EXPECT_LT(law.tangential, tolerance)
                 << name(g) << " et " << p.et << " limitForce " << limitForce << " tc/dt " << ratio;
         }
 }
@@ -366,14 +385,11 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
 {
     // Gross sliding (vt/vn 4, mu 0.3, 1 m/s) with et != en, against the
     // continuous law (reference ODE, rigid-arm spring; between two spheres the
-    // law's en is not the request: the pull of the tangential motion). Table
-    // 3.1's beads: within the 0.5 % target at tc/10 and 1 % at the coarsest
-    // steps, for en and the contact point's change of tangential velocity du
-    // (measured: at most 0.13 % and 0.28 %). Printed, not asserted: en 0.3 /
-    // et 0.8, whose du is 0.5-0.85 % off the law at tc/5 and tc/10 alike (not a
-    // step error: at the end of the contact the lightly damped spring and the
-    // per-step friction bound part from the law's instantaneous cap; README,
-    // exactCollision, limits).
+    // law's en is not the request: the pull of the tangential motion). Within
+    // the 0.5 % target at tc/10 and 1 % at the coarsest steps, for en and the
+    // contact point's change of tangential velocity du, Table 3.1's beads and
+    // en 0.3 / et 0.8 (where the lightly damped spring sticks again and slides
+    // again at the end of the contact: cappedFlow's events).
     unsigned seed = 700;
     struct P { double en, et; };
     for (P p : {P{0.56, 0.46}, P{0.3, 0.8}})
@@ -392,13 +408,13 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
             const double duLaw = (1.0 + ode.tangentialRestitution) * c.tangentialSpeed;
             for (const Trajectory& t : runs) {
                 const Outcome o = measureTrajectory(c, t);
+                if (std::getenv("SHOW")) std::printf("  en %.8f du %.8f\n", o.restitution, (1.0 + o.tangentialRestitution) * c.tangentialSpeed);
                 worstEn = std::max(worstEn, std::fabs(o.restitution / ode.restitution - 1.0));
                 worstDu = std::max(worstDu, std::fabs((1.0 + o.tangentialRestitution) * c.tangentialSpeed / duLaw - 1.0));
             }
             std::printf("sliding, en %.2f et %.2f, %s, limitForce %d, tc/dt %.1f: the law's en %.5f; worst against "
                         "the law: en %.2e, du %.2e\n",
                         p.en, p.et, name(g).c_str(), limitForce, ratio, ode.restitution, worstEn, worstDu);
-            if (p.en < 0.5) continue;  // the known limit above
             const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
             EXPECT_LT(worstEn, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;
             EXPECT_LT(worstDu, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;

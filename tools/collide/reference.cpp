@@ -296,9 +296,9 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
             // the spring slid to zero force there, at any mu (an instant the
             // steps above would miss for large mu).
             const double force = viscoelastic::normalForce(law.k, ck.overlap, -ck.normalVelocity, false);
-            if (prevForce * force < 0.0 && !c.rigidArmSpring) {
+            if (prevForce * force < 0.0) {
                 const double since = h * force / (force - prevForce);
-                xi = law.slidingSpring(Vec3::Zero(), ck.tangentialVelocity) + since * ck.tangentialVelocity;
+                xi = law.slidingSpring(Vec3::Zero(), w) + since * w;
             }
             prevForce = force;
             put(y, 6, xi);
