@@ -19,10 +19,13 @@
 //    when the overlap (or, with limitForce, the force) reaches zero within the
 //    coming step at s_e, the last force makes the rate after the step the
 //    exit rate X'(s_e).
-// A contact between two steps is otherwise untouched: nine multiplications
-// and two comparisons per step more than the plain law (four of them for the
-// friction bound; five more with a pull, between two spheres); the start and
-// end need a few transcendental evaluations, once per contact.
+// Friction follows the law's instantaneous cap mu |Fn(t)| through the step
+// (cappedFlow, below): where the spring stays clear of the cap one step on,
+// the step is the plain law and a check; a step that reaches the cap runs
+// out of line. A contact between two steps is otherwise untouched: a few
+// multiplications and comparisons per step more than the plain law (more
+// with a pull, between two spheres); the start and end need a few
+// transcendental evaluations, once per contact.
 //
 // Per unit mass; the LIGGGHTS model multiplies by meff. State per contact:
 // its phase (fresh, touching, ended), kept in the contact history.
@@ -181,9 +184,9 @@ struct CollisionStep {
     double force = 0;        // per unit mass, along the normal (positive: repulsive)
     double sinceStart = -1;  // first step: time since first touch [s] (else < 0)
     double endsAfter = -1;   // last step: time from this step to the end of the contact [s] (else < 0)
-    // The law's friction bound is mu |Fn|: over this step, mu times `friction`,
-    // the mean of |Fn| (per unit mass) over the part of the continuous contact
-    // the step stands for (first touch or the half step before, to the half
+    // A held contact's friction bound (the others follow the cap through the
+    // step): mu times `friction`, the mean of |Fn| (per unit mass) over the
+    // part of the continuous contact the step stands for (first touch or the half step before, to the half
     // step after or the end). The steps' parts tile the contact, so in gross
     // sliding the friction impulse is mu times the integral of |Fn| exactly.
     // (The step's own force is not that mean: it nets the repulsive and
@@ -246,6 +249,38 @@ double bracketedNewton(FS fs, double lo, double hi, double flo, double t)
             t = 0.5 * (lo + hi);
         }
         if (hi - lo < collapsed) return t;
+    }
+    return t;
+}
+
+// tau in [lo, hi] with f(tau) = 0, f(lo) <= 0 < f(hi) (or the reverse):
+// regula falsi with the Illinois modification, which converges
+// superlinearly, until a step moves tau by less than 1e-10 of the bracket
+// (an error of order its square: round-off). For the events within a step,
+// whose every evaluation costs a flow.
+template <class F>
+double illinoisRoot(F f, double lo, double hi, double flo, double fhi)
+{
+    const double tolerance = 1e-10 * (hi - lo);
+    double t = lo;
+    int side = 0;
+    for (int it = 0; it < 60 && hi - lo > tolerance; ++it) {
+        const double next = (flo == fhi) ? 0.5 * (lo + hi) : lo - flo * (hi - lo) / (fhi - flo);
+        const double tn = (next > lo && next < hi) ? next : 0.5 * (lo + hi);
+        const double fn = f(tn);
+        const double moved = std::fabs(tn - t);
+        t = tn;
+        if (fn == 0.0) return t;
+        if ((fn > 0.0) == (fhi > 0.0)) {
+            hi = t, fhi = fn;
+            if (side == -1) flo *= 0.5;
+            side = -1;
+        } else {
+            lo = t, flo = fn;
+            if (side == 1) fhi *= 0.5;
+            side = 1;
+        }
+        if (moved < tolerance) return t;
     }
     return t;
 }
@@ -638,7 +673,15 @@ struct CapSource {
     Motion now;    // at 0, of x + pull / k (free)
     double pull;   // Fn = k x + c u - pull along it
     double kappa;  // the cap is kappa |Fn|
-    Motion at(double t) const { return normal->after(now, t); }
+    // The step's span and the normal's flow over it, kept per type pair: a
+    // step without events takes no transcendental evaluation.
+    double span = -1;
+    FreeOscillator::Flow spanFlow{};
+    Motion at(double t) const
+    {
+        if (t == 0.0) return now;
+        return t == span ? normal->after(now, spanFlow) : normal->after(now, t);
+    }
     double force(const Motion& m) const { return normal->ending(m, true) - pull; }
     // The cap's rate, |Fn|' (at a zero of Fn: the rate at which it leaves zero).
     double capRate(const Motion& m, double fn) const
@@ -664,31 +707,33 @@ inline TangentialMotion freeTangential(const FreeOscillator& o, const Tangential
 }  // namespace detail
 
 // The tangential motion from `m` at time a to time b (a <= b, b - a under
-// half the normal's period: Fn turns at most once in between).
-inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const CapSource& src, double a, double b)
+// half the normal's period: Fn turns at most once in between). `spanFlow`:
+// the tangential flow over src.span, used from a = 0 (a step without events
+// then takes no transcendental evaluation).
+inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const CapSource& src, double a, double b,
+                             const FreeOscillator::Flow* spanFlow = nullptr)
 {
     CappedFlow r{m, Vec3::Zero(), true};
     double t = a;
     Motion mn = src.at(a);
     double fn = src.force(mn);
+    const Motion mb = src.at(b);
+    const double fb = src.force(mb);
+    const auto capAt = [&](double f) { return src.kappa * std::fabs(f); };
+    // where Fn turns in (a, b]: b + 1 if it does not
+    double zero = b + 1.0;
+    if (fn * fb < 0.0) {
+        const auto fs = [&](double tau) {
+            const Motion q = src.at(tau);
+            return std::make_pair(src.force(q), src.normal->forceRate(q));
+        };
+        zero = detail::bracketedNewton(fs, a, b, fn, a + (b - a) * fn / (fn - fb));
+    }
     Vec3 dir = Vec3::Zero();  // the sliding direction, kept through the cap's zero
     // just stuck again, or just reached the cap: sticking, or sliding,
     // whatever round-off says (a root in time leaves the force off the cap
     // by the root's tolerance times the cap's rate, large for a large mu)
     bool restuck = false, onset = false;
-    const auto capAt = [&](double f) { return src.kappa * std::fabs(f); };
-    // where Fn turns in (t, b]: b + 1 if it does not
-    const auto zeroOfFn = [&](double from, double fFrom, const Motion& mFrom) {
-        const Motion mb = src.at(b);
-        const double fb = src.force(mb);
-        if (!(fFrom * fb < 0.0)) return b + 1.0;
-        const auto fs = [&](double tau) {
-            const Motion q = src.at(tau);
-            return std::make_pair(src.force(q), src.normal->forceRate(q));
-        };
-        (void)mFrom;
-        return detail::bracketedNewton(fs, from, b, fFrom, from + (b - from) * fFrom / (fFrom - fb));
-    };
     for (int event = 0; event < 8 && t < b; ++event) {
         const double cap = capAt(fn);
         const Vec3 phi = o.k * m.xi + o.c * m.u;
@@ -703,13 +748,17 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, fn);
         }
         restuck = onset = false;
-        const double zero = zeroOfFn(t, fn, mn);
-        const double end = std::min(zero, b);
+        const double end = t < zero ? std::min(zero, b) : b;
+        // the normal motion at `end` (b's is at hand)
+        const auto normalAt = [&](double tau) { return tau == b ? mb : src.at(tau); };
         if (!sliding) {
-            const auto free = [&](double tau) { return detail::freeTangential(o, m, o.flow(tau - t)); };
+            const double t0 = t;
+            const auto free = [&](double tau) {
+                return detail::freeTangential(o, m, (spanFlow && t0 == 0.0 && tau == src.span) ? *spanFlow : o.flow(tau - t0));
+            };
             // the cap at tau: exactly zero at Fn's zero (where the root's
             // round-off times a large mu could otherwise exceed the spring)
-            const auto capThen = [&](double tau) { return tau >= zero ? 0.0 : capAt(src.force(src.at(tau))); };
+            const auto capThen = [&](double tau) { return tau == zero ? 0.0 : capAt(src.force(normalAt(tau))); };
             const auto over = [&](double tau) {  // |k xi + c u| over the cap at tau
                 const TangentialMotion q = free(tau);
                 return (o.k * q.xi + o.c * q.u).norm() - capThen(tau);
@@ -718,7 +767,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             const double overEnd = (o.k * q.xi + o.c * q.u).norm() - capThen(end);
             double to = end;
             if (overEnd > 0.0) {
-                to = detail::bracketedRoot([&](double tau) { return tau == t ? std::min(over(tau), 0.0) : over(tau); }, t, end);
+                to = detail::illinoisRoot(over, t, end, std::min(p - cap, 0.0), overEnd);
                 r.stuck = false, onset = true;
             }
             const TangentialMotion next = to == end ? q : free(to);
@@ -728,39 +777,41 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             // sliding: u(tau) = u(t) - kappa s I1, I1 = |int_t^tau Fn| (Fn of one sign)
             r.stuck = false;
             const Motion from = mn;
-            const auto impulse = [&](const Motion& q, double tau) { return std::fabs(from.u - q.u - src.pull * (tau - t)); };
-            const auto unload = [&](double tau) {  // > 0: still sliding at tau
-                const Motion q = src.at(tau);
-                const double f = tau >= zero ? 0.0 : src.force(q);
+            const double t0 = t;
+            const auto impulse = [&](const Motion& q, double tau) { return std::fabs(from.u - q.u - src.pull * (tau - t0)); };
+            const auto unloadAt = [&](const Motion& q, double tau) {  // > 0: still sliding at tau
+                const double f = tau == zero ? 0.0 : src.force(q);
                 const double u = m.u.dot(dir) - src.kappa * impulse(q, tau);
                 return o.k * u - o.c * capAt(f) - src.capRate(q, f);
             };
+            const auto unload = [&](double tau) { return unloadAt(normalAt(tau), tau); };
             double to = end;
-            if (!(unload(end) > 0.0)) {
-                const double here = unload(t);
-                to = here > 0.0 ? detail::bracketedRoot(unload, t, end) : t;
+            Motion q = normalAt(end);
+            const double unloadEnd = unloadAt(q, end);
+            if (!(unloadEnd > 0.0)) {
+                const double here = unloadAt(mn, t);
+                to = here > 0.0 ? detail::illinoisRoot(unload, t, end, here, unloadEnd) : t;
+                if (to != end) q = src.at(to);
                 restuck = true;
             }
             if (to > t) {
-                const Motion q = src.at(to);
                 const double span = to - t;
                 // the double integral of Fn: u_n(t) span - (x(to) - x(t)) - pull span^2 / 2
                 const double twice = std::fabs(from.u * span - (q.x - from.x) - 0.5 * src.pull * span * span);
                 r.displacement += m.u * span - src.kappa * twice * dir;
                 m.u -= src.kappa * impulse(q, to) * dir;
-                m.xi = ((to >= zero ? 0.0 : capAt(src.force(q))) * dir - o.c * m.u) / o.k;
+                m.xi = ((to == zero ? 0.0 : capAt(src.force(q))) * dir - o.c * m.u) / o.k;
                 t = to;
             }
         }
-        mn = src.at(t);
-        fn = src.force(mn);
-        if (t >= zero) fn = 0.0;  // exactly at the zero: the cap is zero there
+        mn = normalAt(t);
+        fn = t == zero ? 0.0 : src.force(mn);  // exactly at the zero: the cap is zero there
     }
     if (t < b) {  // more events than expected: the rest as the reference steps it
         const TangentialMotion q = detail::freeTangential(o, m, o.flow(b - t));
         r.displacement += q.xi - m.xi;
         m = q;
-        const double cap = capAt(src.force(src.at(b)));
+        const double cap = capAt(fb);
         const Vec3 phi = o.k * m.xi + o.c * m.u;
         if (phi.norm() > cap) m.xi = (cap * phi.normalized() - o.c * m.u) / o.k, r.stuck = false;
     }
@@ -786,7 +837,7 @@ struct ExactTangentialState {
                                                    const StepLaw& normalLaw, const CollisionStep& normal, double kappa)
 {
     const double dt = law.dt;
-    const CapSource src{&normalLaw.o, normal.now, normal.pull, kappa};
+    const CapSource src{&normalLaw.o, normal.now, normal.pull, kappa, dt, normalLaw.flowStep};
     TangentialMotion at;
     bool stuck = true;
     if (normal.sinceStart >= 0.0) {  // from first touch, at the free flight's rate
@@ -800,7 +851,7 @@ struct ExactTangentialState {
         e = {};
         return (last.end.u - w) / dt;
     }
-    const CappedFlow step = cappedFlow(law.o, at, src, 0.0, dt);
+    const CappedFlow step = cappedFlow(law.o, at, src, 0.0, dt, &law.flowStep);
     const Vec3 next = step.displacement / dt;  // w_{n+1/2}
     xi = step.end.xi - step.displacement;      // the next step adds dt w_{n+1/2}
     e.offPath = !(stuck && step.stuck);
