@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
+#include "core/collision.h"
 #include "reference.h"
 
 using namespace collide;
@@ -87,4 +89,71 @@ TEST(Reference, FrictionlessObliquePairKeepsSpinAndNormalRestitution)
     // ~ 4e-5 to the normal motion; no friction means no torque.
     EXPECT_NEAR(a.restitution, c.params.en, 1e-4);
     EXPECT_DOUBLE_EQ(a.spin1, 300.0);
+}
+
+// exactCollision's friction (core/collision.h, cappedFlow) stepped by the core
+// alone, a sphere on a flat wall, against the continuous law (this reference,
+// rigid-arm spring, tc/20000): every start phase and step, where the law's cap
+// mu |Fn| binds. Normal per unit meff = m; the spring's mass is the drive's,
+// with the torque at LIGGGHTS' arm R - overlap/2 as in the reference.
+// Cases: Table 3.1's beads and en 0.3 / et 0.8 at mu 0.5, sticking at first
+// (vt/vn 0.2: the spring lets go near the force's zero, sticks again) and
+// sliding (vt/vn 4), limitForce off and on, 64 phases, integer and non-integer
+// tc/dt from the coarsest the guard admits to tc/100. Tolerance 1e-4 (the
+// reference's 4e-5; sticking measured 3e-5) plus 5e-3 dt/tc: sliding, the
+// drive's mass changes with the arm R - overlap/2 within a step, which a step
+// holds at its sample, a first-order error (6.7e-4 at tc/5, 2.7e-4 at tc/10,
+// 1.5e-5 at tc/100).
+TEST(Reference, ExactCollisionFrictionFollowsTheLawAtEveryPhaseAndStep)
+{
+    using namespace viscoelastic;
+    struct P { double en, et; };
+    for (P p : {P{0.56, 0.46}, P{0.3, 0.8}})
+    for (bool limitForce : {false, true})
+    for (double slope : {0.2, 4.0}) {
+        Case c;
+        c.geometry = Geometry::Wall;
+        c.limitForce = limitForce;
+        c.params = {1e-4, p.en, p.et, 0.5};
+        c.normalSpeed = 1.0;
+        c.tangentialSpeed = slope;
+        c.rigidArmSpring = true;
+        const Outcome ode = integrateContactOde(c, 20000);
+        const double m = c.mass1();
+        const auto o = exactCollisionOscillators(c.params, limitForce);
+        ASSERT_TRUE(o);
+        double worst = 0.0;
+        for (double ratio : {limitForce ? 6.0 : 5.0, 7.3, 10.0, 13.7, 40.0, 100.0}) {
+            const double dt = c.params.tc / ratio;
+            const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
+            const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, limitForce);
+            for (int k = 0; k < 64; ++k) {
+                CollisionState state;
+                TangentialState spring;
+                ExactTangentialState exact;
+                double x = (k + 0.5) / 64.0 * dt, v = 1.0;
+                Vec3 w(slope, 0.0, 0.0);
+                const Vec3 n(0.0, 0.0, 1.0);
+                for (int steps = 0; x > 0.0 && steps < 100000; ++steps) {
+                    const CollisionStep s = exactCollisionStep(normal, state, x, v);
+                    // the torque acts at LIGGGHTS' arm R - overlap/2, as in the reference
+                    const double mt = rigidArmMass(m, m, c.radius1, c.radius1 - 0.5 * x, 0.0, 0.0, 0.0);
+                    const Vec3 f = exactTangentialForce(spring, exact, n, w, mt, tangential, normal, s, 0.5 * m,
+                                                        0.5 * m * s.friction, true);
+                    w += dt * f / mt;
+                    v -= dt * s.force;
+                    x += dt * v;
+                }
+                EXPECT_NEAR(-v, ode.restitution, 1e-4) << p.en << " tc/dt " << ratio << " phase " << k;
+                const double error = std::fabs((slope - w[0]) / (slope * (1.0 + ode.tangentialRestitution)) - 1.0);
+                worst = std::max(worst, error);
+                if (std::getenv("SHOW") && k == 0) std::printf("  tc/dt %.1f: %.2e\n", ratio, error);
+                EXPECT_LT(error, 1e-4 + 5e-3 / ratio) << "en " << p.en << " et " << p.et << " limitForce " << limitForce << " vt/vn "
+                                       << slope << " tc/dt " << ratio << " phase " << k;
+            }
+        }
+        std::printf("en %.2f et %.2f limitForce %d vt/vn %.1f: the law's et %.5f; worst change of the contact point's "
+                    "velocity against it %.2e\n",
+                    p.en, p.et, limitForce, slope, ode.tangentialRestitution, worst);
+    }
 }
