@@ -40,8 +40,9 @@ public:
 
     void registerSettings(Settings&) {}
     // exactCollision (model viscoelastic registered its state first): the
-    // continuous rate's offset from the samples' where the cap bound within a
-    // step (h[6], unused then, flags it). Only then: restart files of the
+    // normal force the step foresaw for the next, and the continuous rate's
+    // offset from the samples' where the cap bound within a
+    // step (h[6], unused then, flags it: 1, and 2 if it ended the step sliding). Only then: restart files of the
     // other settings keep their contact history.
     void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
     {
@@ -49,6 +50,7 @@ public:
         rate_offset = hsetup->add_history_value("pournin_rate_x", "1");
         hsetup->add_history_value("pournin_rate_y", "1");
         hsetup->add_history_value("pournin_rate_z", "1");
+        hsetup->add_history_value("pournin_forecast", "0");
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -85,7 +87,7 @@ public:
         if (exact) {
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
             const double* const r = &sidata.contact_history[rate_offset];
-            e.offPath = h[6] != 0.0, e.rateOffset = Vec3(r[0], r[1], r[2]);
+            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.rateOffset = Vec3(r[0], r[1], r[2]), e.forecast = r[3];
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
@@ -103,9 +105,10 @@ public:
             }
             if (!exact) h[6] = state.normalForce;
             else {
-                h[6] = e.offPath ? 1.0 : 0.0;
+                h[6] = e.offPath ? (e.sliding ? 2.0 : 1.0) : 0.0;
                 double* const r = &sidata.contact_history[rate_offset];
                 for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
+                r[3] = e.forecast;
             }
         }
 
@@ -129,7 +132,7 @@ public:
         double* const h = &scdata.contact_history[history_offset];
         for (int d = 0; d < 7; ++d) h[d] = 0.0;
         if (rate_offset >= 0)
-            for (int d = 0; d < 3; ++d) scdata.contact_history[rate_offset + d] = 0.0;
+            for (int d = 0; d < 4; ++d) scdata.contact_history[rate_offset + d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
