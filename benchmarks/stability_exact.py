@@ -198,7 +198,26 @@ def section(res, meta, rows):
         + harness.markdown(rows, [("law", "law", None)] + [
             ("kinetic energy, second half [J]", "ke_late_mean_J", "{:.3g}") if c[0] == "kinetic energy [J]" else c
             for c in stability.RUN_TABLE]) + "\n</details>\n\n"
-        + common.sh(common.command("stability_exact.py")))
+        + common.sh(common.command("stability_exact.py"))
+        + capped_section(res))
+
+
+def capped_section(res):
+    """exactCollision with the Coulomb cap followed through the step (binary contacts; the per-step
+    bound in packings), rerun at the reference and at the largest dt/tc each column kept above."""
+    if not res.has("stability_exact_capped.csv"):
+        return ""
+    rows = [r for r in res.csv("stability_exact_capped.csv") if r["model"] == "model"]
+    ref = {(r["en"], r["load"]): r["ke_late_mean_J"] for r in rows if r["dt_over_tc"] == REFERENCE}
+    for r in rows:
+        r["rise"] = r["ke_late_mean_J"] / ref[(r["en"], r["load"])] if (r["en"], r["load"]) in ref else float("nan")
+    return ("\nexactCollision with friction following the law's instantaneous cap (README, exactCollision), "
+            "rerun at dt/tc 0.1 and at the\nlargest dt/tc each column kept in the table above "
+            "(`stability_exact.py --laws exactCollision --en EN --fractions F`, one run per en):\n\n"
+            + harness.markdown(rows, [("en", "en", "{:g}"), ("load [g]", "load", "{:g}"), ("dt/tc", "dt_over_tc", "{:g}"),
+                                      ("status", "status", None),
+                                      ("kinetic energy, second half [J]", "ke_late_mean_J", "{:.3g}"),
+                                      ("energy / tc/10's", "rise", "{:.1f}")]) + "\n")
 
 
 if __name__ == "__main__":
