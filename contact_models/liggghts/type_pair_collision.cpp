@@ -32,9 +32,10 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
                                    .c_str());
     const double dt = lmp->update->dt;
     collision_.assign(stride_ * stride_, CollisionLaws{});
-    std::string report = format("%s: exactCollision on: a single binary collision restitutes en and (sticking) et "
-                                "and lasts tc whatever its start within a step (between two spheres at incidence: "
-                                "the continuous law's en and et; README, exactCollision)\n",
+    std::string report = format("%s: exactCollision on: a single binary collision restitutes what the continuous "
+                                "law does, whatever its start within a step: en, (sticking) et and tc where the law "
+                                "gives them (between two spheres at incidence, or with et != en, finite friction and "
+                                "limitForce off, the law's own en and et; README, exactCollision)\n",
                                 caller);
     for (int i = 1; i < stride_; ++i)
         for (int j = i; j < stride_; ++j) {
