@@ -255,19 +255,20 @@ double bracketedNewton(FS fs, double lo, double hi, double flo, double t)
 }
 
 // tau in [lo, hi] with f(tau) = 0, f(lo) <= 0 < f(hi): regula falsi with
-// the Illinois modification, at most `evaluations` of f. An event's time
-// within a step need not be exact: the state there is taken on the exact
-// motion, and an event time off by d moves the step's outcome by order d^2
-// times the force's rate (the tests against the continuous law bound it).
-// f(lo) = 0 (on the cap, leaving it below) starts from the bracket's middle.
+// the Illinois modification (superlinear), until a step moves tau by less
+// than 1e-10 of the bracket (an error of order its square: round-off).
+// f(lo) = 0 (on the cap, leaving it below) bisects until f is negative.
 template <class F>
-double illinoisRoot(F f, double lo, double hi, double flo, double fhi, int evaluations = 3)
+double illinoisRoot(F f, double lo, double hi, double flo, double fhi)
 {
-    double t = hi;
+    const double tolerance = 1e-10 * (hi - lo);
+    double t = lo;
     int side = 0;
-    for (int it = 0; it < evaluations; ++it) {
-        t = (flo == 0.0 || flo == fhi) ? 0.5 * (lo + hi) : lo - flo * (hi - lo) / (fhi - flo);
-        if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    for (int it = 0; it < 80; ++it) {
+        double next = (flo == 0.0 || flo == fhi) ? 0.5 * (lo + hi) : lo - flo * (hi - lo) / (fhi - flo);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        const double moved = std::fabs(next - t);
+        t = next;
         const double ft = f(t);
         if (ft == 0.0) return t;
         if (ft > 0.0) {
@@ -279,9 +280,9 @@ double illinoisRoot(F f, double lo, double hi, double flo, double fhi, int evalu
             if (side == 1) fhi *= 0.5;
             side = 1;
         }
+        if ((it > 0 && moved < tolerance) || hi - lo < tolerance) return t;
     }
-    // the last bracket's regula falsi
-    return (flo == fhi) ? 0.5 * (lo + hi) : lo - flo * (hi - lo) / (fhi - flo);
+    return t;
 }
 
 }  // namespace detail
@@ -739,6 +740,9 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
     // packing the normal motion is sampled afresh each step, and the cap
     // moves with it (a binary contact's does not: the same motion).
     bool restuck = false, onset = false, onCap = wasSliding;
+    // sticking again met the cap at once: the slide only grazed the re-stick
+    // condition, and goes on to where it really unloads
+    bool grazing = false;
     for (int event = 0; event < 6 && t < b; ++event) {
         const double cap = capAt(fn);
         const Vec3 phi = o.k * m.xi + o.c * m.u;
@@ -752,6 +756,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             if (p > cap || (onCap && dir.squaredNorm() > 0.0)) m.xi = (cap * dir - o.c * m.u) / o.k, r.stuck = false;  // onto the cap
             sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, fn);
         }
+        const bool justRestuck = restuck;
         restuck = onset = onCap = false;
         const double end = t < zero ? std::min(zero, b) : b;
         // the normal motion at `end` (b's is at hand)
@@ -772,9 +777,14 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             const double overEnd = (o.k * q.xi + o.c * q.u).norm() - capThen(end);
             double to = end;
             if (overEnd > 0.0) {
-                // already at the cap (round-off): sliding from here, without a root
-                to = p >= cap * (1.0 - 1e-9) ? t : detail::illinoisRoot(over, t, end, p - cap, overEnd);
+                // already at the cap (round-off): sliding from here, without a
+                // root -- but not just after sticking again, where the free
+                // spring first unloads and meets the cap later in the step
+                to = (!justRestuck && p >= cap * (1.0 - 1e-9))
+                         ? t
+                         : detail::illinoisRoot(over, t, end, std::min(p - cap, 0.0), overEnd);
                 r.stuck = false, onset = true;
+                grazing = justRestuck && to - t <= 1e-9 * (end - t);
             }
             r.sliding = false;
             const TangentialMotion next = to == end ? q : free(to);
@@ -786,22 +796,30 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             const Motion from = mn;
             const double t0 = t;
             const auto impulse = [&](const Motion& q, double tau) { return std::fabs(from.u - q.u - src.pull * (tau - t0)); };
+            // Fn keeps one sign over the slide (t, end]: at its end (Fn's zero, or
+            // the force's end with limitForce) the cap's rate is the one it
+            // arrives with, falling, not the one it leaves zero with
+            const double sign = fn != 0.0 ? fn : src.normal->forceRate(mn);
             const auto unloadAt = [&](const Motion& q, double tau) {  // > 0: still sliding at tau
                 const double f = tau == zero ? 0.0 : src.force(q);
+                const double rate = src.kappa * (sign > 0.0 ? 1.0 : -1.0) * src.normal->forceRate(q);
                 const double u = m.u.dot(dir) - src.kappa * impulse(q, tau);
-                return o.k * u - o.c * capAt(f) - src.capRate(q, f);
+                return o.k * u - o.c * capAt(f) - rate;
             };
             const auto unload = [&](double tau) { return unloadAt(normalAt(tau), tau); };
             double to = end;
             Motion q = normalAt(end);
             const double unloadEnd = unloadAt(q, end);
             if (!(unloadEnd > 0.0)) {
-                const double here = unloadAt(mn, t);
-                to = here > 0.0 ? detail::illinoisRoot([&](double tau) { return -unload(tau); }, t, end, -here, -unloadEnd) : t;
+                const double here = grazing ? 0.0 : unloadAt(mn, t);
+                to = (here > 0.0 || grazing)
+                         ? detail::illinoisRoot([&](double tau) { return -unload(tau); }, t, end, -here, -unloadEnd)
+                         : t;
                 if (to != end) q = src.at(to);
                 restuck = true;
             }
             r.sliding = !restuck;
+            grazing = false;
             if (to > t) {
                 const double span = to - t;
                 // the double integral of Fn: u_n(t) span - (x(to) - x(t)) - pull span^2 / 2
