@@ -1026,4 +1026,34 @@ inline SteppedCollision exactCollisionAtPhase(const StepLaw& normal, const StepL
     return r;
 }
 
+// A wall collision with friction under exactCollision, stepped as LIGGGHTS
+// steps it: first overlap phase * dt at unit approach rate (normal per unit
+// meff), the contact point's tangential rate vt along x, the spring's mass
+// mass(x) at overlap x, the cap muMeff |Fn|. Returns the normal and the
+// tangential rate after the contact.
+struct FrictionalExit {
+    double normal, tangential;
+};
+
+template <class Mass>
+FrictionalExit exactWallCollisionAtPhase(const StepLaw& normal, const StepLaw& tangential, double phase, double vt,
+                                         double muMeff, Mass mass)
+{
+    const double dt = normal.dt;
+    CollisionState state;
+    TangentialState spring;
+    ExactTangentialState exact;
+    double x = phase * dt, v = 1.0;
+    Vec3 w(vt, 0.0, 0.0);
+    const Vec3 n(0.0, 0.0, 1.0);
+    for (int steps = 0; x > 0.0 && steps < 100000; ++steps) {
+        const CollisionStep s = exactCollisionStep(normal, state, x, v);
+        const double mt = mass(x);
+        w += dt * exactTangentialForce(spring, exact, n, w, mt, tangential, normal, s, muMeff, muMeff * s.friction, true) / mt;
+        v -= dt * s.force;
+        x += dt * v;
+    }
+    return {-v, w[0]};
+}
+
 }  // namespace viscoelastic

@@ -128,24 +128,12 @@ TEST(Reference, ExactCollisionFrictionFollowsTheLawAtEveryPhaseAndStep)
             const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
             const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, limitForce);
             for (int k = 0; k < 64; ++k) {
-                CollisionState state;
-                TangentialState spring;
-                ExactTangentialState exact;
-                double x = (k + 0.5) / 64.0 * dt, v = 1.0;
-                Vec3 w(slope, 0.0, 0.0);
-                const Vec3 n(0.0, 0.0, 1.0);
-                for (int steps = 0; x > 0.0 && steps < 100000; ++steps) {
-                    const CollisionStep s = exactCollisionStep(normal, state, x, v);
-                    // the torque acts at LIGGGHTS' arm R - overlap/2, as in the reference
-                    const double mt = rigidArmMass(m, m, c.radius1, c.radius1 - 0.5 * x, 0.0, 0.0, 0.0);
-                    const Vec3 f = exactTangentialForce(spring, exact, n, w, mt, tangential, normal, s, 0.5 * m,
-                                                        0.5 * m * s.friction, true);
-                    w += dt * f / mt;
-                    v -= dt * s.force;
-                    x += dt * v;
-                }
-                EXPECT_NEAR(-v, ode.restitution, 1e-4) << p.en << " tc/dt " << ratio << " phase " << k;
-                const double error = std::fabs((slope - w[0]) / (slope * (1.0 + ode.tangentialRestitution)) - 1.0);
+                // the torque acts at LIGGGHTS' arm R - overlap/2, as in the reference
+                const FrictionalExit exit = exactWallCollisionAtPhase(
+                    normal, tangential, (k + 0.5) / 64.0, slope, 0.5 * m,
+                    [&](double x) { return rigidArmMass(m, m, c.radius1, c.radius1 - 0.5 * x, 0.0, 0.0, 0.0); });
+                EXPECT_NEAR(exit.normal, ode.restitution, 1e-4) << p.en << " tc/dt " << ratio << " phase " << k;
+                const double error = std::fabs((slope - exit.tangential) / (slope * (1.0 + ode.tangentialRestitution)) - 1.0);
                 worst = std::max(worst, error);
                 if (std::getenv("SHOW") && k == 0) std::printf("  tc/dt %.1f: %.2e\n", ratio, error);
                 EXPECT_LT(error, 1e-4 + 5e-3 / ratio) << "en " << p.en << " et " << p.et << " limitForce " << limitForce << " vt/vn "
