@@ -729,11 +729,15 @@ struct CapSource {
         return t == span ? normal->after(now, spanFlow) : normal->after(now, t);
     }
     double force(const Motion& m) const { return normal->ending(m, true) - pull; }
-    // The cap's rate, |Fn|' (at a zero of Fn: the rate at which it leaves zero).
-    double capRate(const Motion& m, double fn) const
+    // The sign of Fn on the interval that starts at m (Fn there): at a zero
+    // of Fn, the side it leaves to. A slide keeps the sign of its start up
+    // to its end, so at a zero it ends on it takes the side it arrives from.
+    double side(const Motion& m, double fn) const { return fn != 0.0 ? fn : normal->forceRate(m); }
+    // The cap's rate kappa |Fn|' on the side `side`.
+    double capRate(const Motion& m, double side) const
     {
-        const double rate = normal->forceRate(m);
-        return kappa * ((fn > 0.0 || (fn == 0.0 && rate > 0.0)) ? rate : -rate);
+        const double rate = kappa * normal->forceRate(m);
+        return side > 0.0 ? rate : -rate;
     }
 };
 
@@ -798,7 +802,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             if (p > 1e-9 * (o.k * m.xi.norm() + o.c * m.u.norm())) dir = phi / p;
             else if (dir.squaredNorm() == 0.0 && m.u.squaredNorm() > 0.0) dir = m.u.normalized();
             if (p > cap || (onCap && dir.squaredNorm() > 0.0)) m.xi = (cap * dir - o.c * m.u) / o.k, r.stuck = false;  // onto the cap
-            sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, fn);
+            sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, src.side(mn, fn));
         }
         const bool justRestuck = restuck;
         restuck = onset = onCap = false;
@@ -843,12 +847,11 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             // Fn keeps one sign over the slide (t, end]: at its end (Fn's zero, or
             // the force's end with limitForce) the cap's rate is the one it
             // arrives with, falling, not the one it leaves zero with
-            const double sign = fn != 0.0 ? fn : src.normal->forceRate(mn);
+            const double side = src.side(mn, fn);
             const auto unloadAt = [&](const Motion& q, double tau) {  // > 0: still sliding at tau
                 const double f = tau == zero ? 0.0 : src.force(q);
-                const double rate = src.kappa * (sign > 0.0 ? 1.0 : -1.0) * src.normal->forceRate(q);
                 const double u = m.u.dot(dir) - src.kappa * impulse(q, tau);
-                return o.k * u - o.c * capAt(f) - rate;
+                return o.k * u - o.c * capAt(f) - src.capRate(q, side);
             };
             const auto unload = [&](double tau) { return unloadAt(normalAt(tau), tau); };
             double to = end;
