@@ -600,16 +600,16 @@ double cappedLawExit(const FreeOscillator& n, const FreeOscillator& s, bool limi
 // 8 materials (en 0.1-0.95, et 0.2-0.95, mu 0.05 to 1e6) x
 // vt/vn 0.05-4 x tc/dt 5.6-20 x limitForce off and on, 32 phases each: the
 // contact point's rate after the contact within 1e-6 of vt (round-off and the
-// reference's events seen to 1e-8), except where the slide only grazes the
-// re-stick condition and the steps stick again (en 0.3 / et 0.8, mu 0.5,
-// vt/vn 1, limitForce on, tc/5.6: 3.2e-3 of vt, README, exactCollision).
+// reference's events seen to 1e-8), also where the spring sticks again on the
+// cap's round-off (en 0.3 / et 0.8, mu 0.5, vt/vn 1, limitForce on, tc/5.6:
+// 3.2e-3 of vt off at one phase when the onset's root started from it).
 TEST(ExactCollision, CappedFlowMatchesAnExactSolutionOfTheLaw)
 {
     struct M { double en, et, mu; };
     const M materials[] = {{0.56, 0.46, 0.5}, {0.3, 0.8, 0.5}, {0.3, 0.8, 0.3}, {0.9, 0.2, 0.1},
                            {0.1, 0.95, 0.2}, {0.56, 0.3, 1e6}, {0.95, 0.95, 0.05}, {0.5, 0.9, 2.0}};
     const double mt = 2.0 / 7.0;
-    int cases = 0, grazing = 0;
+    int cases = 0;
     for (bool limitForce : {false, true})
     for (double ratio : {5.6, 7.3, 10.0, 20.0})
     for (const M& m : materials)
@@ -626,10 +626,9 @@ TEST(ExactCollision, CappedFlowMatchesAnExactSolutionOfTheLaw)
                 exactWallCollisionAtPhase(normal, tangential, (k + 0.5) / 32.0, vt, m.mu, [&](double) { return mt; });
             worst = std::max(worst, std::fabs(e.tangential - exit) / vt);
         }
-        const bool known = limitForce && m.en == 0.3 && m.mu == 0.5 && vt == 1.0 && ratio == 5.6;
-        EXPECT_LT(worst, known ? 5e-3 : 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt
+        EXPECT_LT(worst, 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt
                                                 << " tc/dt " << ratio << " limitForce " << limitForce;
-        ++cases, grazing += worst > 1e-6;
+        ++cases;
     }
-    std::printf("%d cases, %d beyond 1e-6 of vt\n", cases, grazing);
+    std::printf("%d cases\n", cases);
 }
