@@ -170,7 +170,7 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
 // a second kick due (a pull that alone parts the bodies faster than the law).
 enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3, held = 4, leaving = 5 };
 
-// What a contact keeps between steps (kHistory numbers of contact history).
+// What a contact keeps between steps.
 struct CollisionState {
     CollisionPhase phase = CollisionPhase::fresh;
     // After the first step: the continuous overlap at that step minus the
@@ -178,27 +178,6 @@ struct CollisionState {
     // second step takes it as its previous sample. After the end step: the
     // time the free flight it set had left to part the bodies.
     double previousOffset = 0;
-    // The law's force (per unit mass) one step on, as this step's continuous
-    // motion foresaw it. A binary contact's next sample lies on that motion,
-    // so its force comes as foreseen; in a packing other contacts move it
-    // every step, and the contact is `packed` from the first step it does not
-    // (to the end of the contact): no binary collision's motion is there to
-    // follow, and its tangential spring takes the per-step bound
-    // (exactTangentialForce).
-    double forecast = 0;
-    bool packed = false;
-
-    static constexpr int kHistory = 3;
-    static CollisionState load(const double* h)
-    {
-        const int p = static_cast<int>(h[0]);
-        return {static_cast<CollisionPhase>(p & 7), h[1], h[2], p >= 8};
-    }
-    void save(double* h) const
-    {
-        h[0] = static_cast<double>(static_cast<int>(phase) + (packed ? 8 : 0));
-        h[1] = previousOffset, h[2] = forecast;
-    }
 };
 
 struct CollisionStep {
@@ -213,13 +192,14 @@ struct CollisionStep {
     // (The step's own force is not that mean: it nets the repulsive and
     // attractive parts where the force turns, and it corrects the start.)
     double friction = 0;
-    // For the tangential cap: whether the contact follows a binary
-    // collision's continuous motion (not held, ended or packed), that motion
-    // at this sample (of x + pull / k, free), the pull, and the law's force
-    // (per unit mass) at this sample and one step on.
+    // For the tangential cap: whether the contact follows the continuous
+    // motion (not held, not ended), that motion at this sample (of x + pull /
+    // k, free), the pull, and the law's force (per unit mass) at this sample
+    // and one step on.
     bool continuous = false;
     Motion now{0.0, 0.0};
     double pull = 0, forceNow = 0, forceNext = 0;
+    double forceScale = 0;  // the size of forceNow's terms, for comparing it with a forecast
     double meff = 1;  // the mass the caller scales these by (the cap is mu meff |Fn|)
 };
 
@@ -389,19 +369,6 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     return r;
 }
 
-// Whether a contact under way still follows the motion its last step
-// foresaw (forceNow: the law's force at this sample, scale: the size of its
-// terms); if not, it is packed from now on. A binary contact's force comes as
-// foreseen to round-off; a pair's pull, which its friction changes from step
-// to step, moves it by a fraction of the pull's change: allowed up to half
-// the pull.
-inline bool stillFollows(CollisionState& state, double forceNow, double scale, double pull)
-{
-    if (state.packed || std::fabs(forceNow - state.forecast) <= 1e-3 * scale + 0.5 * pull) return !state.packed;
-    state.packed = true;
-    return false;
-}
-
 // exactCollisionStep's other steps: a contact's first and last, one that
 // starts again after it ended, one created overlapping. Kept out of the
 // common step, which they would otherwise crowd with their transcendental
@@ -442,8 +409,6 @@ inline bool stillFollows(CollisionState& state, double forceNow, double scale, d
     }
     // The continuous motion at this step, of x + shift: free (x'' = -F - pull).
     const double shift = pull / law.o.k;
-    const bool underWay = state.phase == CollisionPhase::touching || state.phase == CollisionPhase::attractive;
-    if (state.phase == CollisionPhase::fresh) state.packed = false;  // a new contact
     Motion now, touch;
     if (state.phase == CollisionPhase::fresh && v > 0.0 && x <= kFreshTouchSteps * v * dt) {
         // free flight before: x = vh s + pull s^2 / 2 with vh the rate
@@ -461,10 +426,9 @@ inline bool stillFollows(CollisionState& state, double forceNow, double scale, d
         now = {x + shift, law.uX * (x + shift) + law.uV * vUsed};
     }
     if (state.phase != CollisionPhase::attractive) state.phase = CollisionPhase::touching;
-    r.now = now, r.pull = pull;
+    r.continuous = true, r.now = now, r.pull = pull;
     r.forceNow = law.o.ending(now, true) - pull;
-    const double scale = std::fabs(law.o.k * now.x) + std::fabs(law.o.c * now.u);
-    r.continuous = !underWay || stillFollows(state, r.forceNow, scale, pull);
+    r.forceScale = std::fabs(law.o.k * now.x) + std::fabs(law.o.c * now.u);
     // this step's part of the contact: from the touch, or half a step back
     const double from = r.sinceStart >= 0.0 ? -r.sinceStart : -0.5 * dt;
     const Motion start = r.sinceStart >= 0.0 ? touch : law.o.after(now, law.flowBack);
@@ -475,7 +439,7 @@ inline bool stillFollows(CollisionState& state, double forceNow, double scale, d
     // (the leapfrog moves the rate by -dt (force + pull))
     const Motion ahead = law.o.after(now, law.flowStep);
     const double endAhead = endingAndSlope(ahead).first;
-    r.forceNext = state.forecast = law.o.ending(ahead, true) - pull;
+    r.forceNext = law.o.ending(ahead, true) - pull;
     if (endAhead > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
         r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
@@ -525,8 +489,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     v += 0.5 * law.dt * pull;
     // A contact under way that goes on past this step: the previous sample
     // and this one define the motion. It costs nine products (five more with a
-    // pull) and two comparisons over the plain law, and eight products more
-    // while it follows its forecast (a binary contact).
+    // pull) and two comparisons over the plain law.
     const bool attractive = state.phase == CollisionPhase::attractive;
     if (attractive || state.phase == CollisionPhase::touching) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
@@ -534,24 +497,17 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
             state.previousOffset = 0.0;
             CollisionStep r;
             r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
-            const auto now = [&] {
-                const double shifted = x + pull / law.o.k;
-                return Motion{shifted, law.uX * shifted + law.uV * vUsed};
-            };
-            // a packed contact's tangential spring needs only the mean below
-            if (!state.packed) {
-                const double forceNow = law.nowX * x + law.nowV * vUsed + law.nowA * pull;
-                const double scale = std::fabs(law.nowX * x) + std::fabs(law.nowV * vUsed);
-                if (detail::stillFollows(state, forceNow, scale, pull)) {
-                    r.continuous = true, r.pull = pull, r.now = now(), r.forceNow = forceNow;
-                    r.forceNext = state.forecast = law.nextX * x + law.nextV * vUsed + law.nextA * pull;
-                }
-            }
+            r.continuous = true, r.pull = pull;
+            const double shifted = x + pull / law.o.k;
+            r.now = {shifted, law.uX * shifted + law.uV * vUsed};
+            r.forceNow = law.nowX * x + law.nowV * vUsed + law.nowA * pull;
+            r.forceScale = std::fabs(law.nowX * x) + std::fabs(law.nowV * vUsed);
+            r.forceNext = law.nextX * x + law.nextV * vUsed + law.nextA * pull;
             // of the force over the step
             const double mean = law.frictionX * x + law.frictionV * vUsed + law.frictionA * pull;
             if (attractive) r.friction = -mean;
             else if (law.forceEnds || law.aheadX * x + law.aheadV * vUsed + law.aheadA * pull >= 0.0) r.friction = mean;
-            else r.friction = frictionOverStep(law, state, now(), pull);
+            else r.friction = frictionOverStep(law, state, r.now, pull);
             return r;
         }
     }
@@ -900,8 +856,8 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
 }
 
 // `tangential pournin` under exactCollision with the cap followed exactly:
-// what pourninExactTangentialForce does, where the contact follows a binary
-// collision's continuous normal motion (normal.continuous). The leapfrog's rate over the
+// what pourninExactTangentialForce does, where the contact follows the
+// continuous normal motion (normal.continuous). The leapfrog's rate over the
 // step is the contact point's mean rate, so the next sample lies on the
 // continuous spring; where the cap bound within the step the samples no
 // longer define the continuous rate, and the state keeps the difference
@@ -912,7 +868,24 @@ struct ExactTangentialState {
     Vec3 rateOffset = Vec3::Zero();
     bool offPath = false;
     bool sliding = false;  // on the cap at the end of the last step
+    double forecast = 0;   // the normal force the last step's motion gave for this step
 };
+
+// Whether the contact's normal force follows the motion its last step
+// foresaw: a binary contact does (to round-off); in a packing other contacts move it every step, and the
+// continuous motion each step samples afresh is no binary collision's. Such
+// a contact gets the per-step bound (cheap), not the cap followed through
+// the step, whose events a packing would trigger at every other step (a
+// settling column: an event in 17 % of its contact-steps, 1.7 times the
+// pair computation's cost).
+inline bool followsItsForecast(const CollisionStep& normal, double forecast)
+{
+    // (a pair's pull, which its friction changes from step to step, moves the
+    // force one step on by a fraction of the pull's change: allowed up to half
+    // the pull)
+    return normal.sinceStart >= 0.0 ||
+           std::fabs(normal.forceNow - forecast) <= 1e-3 * normal.forceScale + 0.5 * normal.pull;
+}
 
 [[gnu::noinline]] inline Vec3 cappedTangentialStep(ExactTangentialState& e, Vec3& xi, const Vec3& w, const StepLaw& law,
                                                    const StepLaw& normalLaw, const CollisionStep& normal, double kappa)
@@ -942,19 +915,16 @@ struct ExactTangentialState {
 }
 
 // The tangential force of a contact under exactCollision. Where the normal
-// contact follows a binary collision's continuous motion, the cap is the
-// law's instantaneous mu |Fn(t)| (cappedTangentialStep; the common step
-// inline). Held, ended or packed, the per-step bound `limit` (mu times the
-// step's mean |Fn|) caps the step law's force: in a packing the cap followed
-// through the step would find events at every other step (a settling
-// column: in 17 % of its contact-steps, 1.7 times the pair computation's
-// cost), for a motion that is no binary collision's.
+// contact follows its continuous motion, the cap is the law's instantaneous
+// mu |Fn(t)| (cappedTangentialStep; the common step inline); held or ended,
+// the per-step bound `limit` (mu times the step's mean |Fn|) caps the step
+// law's force.
 inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, const Vec3& n, const Vec3& vt, double mt,
                                  const StepLaw& law, const StepLaw& normalLaw, const CollisionStep& normal,
                                  double muMeff, double limit, bool advance)
 {
-    if (!normal.continuous) {
-        if (advance) e = {};
+    if (!normal.continuous || !followsItsForecast(normal, e.forecast)) {
+        if (advance) e = {}, e.forecast = normal.forceNext;
         return pourninExactTangentialForce(s, n, vt, mt, law, normal, limit, advance);
     }
     const bool turned = s.normal.squaredNorm() > 0.0;
@@ -976,6 +946,7 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
         if (turned && ee.offPath) ee.rateOffset = rotateWithNormal(ee.rateOffset, s.normal, n);
         a = cappedTangentialStep(ee, xi, vt, law, normalLaw, normal, kappa);
     }
+    ee.forecast = normal.forceNext;
     if (advance) s.xi = xi, s.normal = n, e = ee;
     return mt * a;
 }

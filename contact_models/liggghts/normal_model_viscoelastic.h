@@ -53,10 +53,8 @@ public:
         // `tangential pournin` goes through the table). Only then: the
         // contact history of restart files stays as it was.
         if (!exactCollision) return;
-        history_offset = hsetup->add_history_value("viscoelastic_phase", "0");  // viscoelastic::CollisionState
+        history_offset = hsetup->add_history_value("viscoelastic_phase", "0");
         hsetup->add_history_value("viscoelastic_offset", "0");
-        hsetup->add_history_value("viscoelastic_forecast", "0");
-        static_assert(viscoelastic::CollisionState::kHistory == 3);
         cmb->add_history_offset("viscoelastic_phase", history_offset);  // tangential pournin then keeps more
     }
 
@@ -108,7 +106,7 @@ public:
         if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
         if (!exactCollision || !scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
-        for (int d = 0; d < viscoelastic::CollisionState::kHistory; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
+        for (int d = 0; d < 2; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -143,7 +141,7 @@ private:
     {
         using namespace viscoelastic;
         double* const h = &sidata.contact_history[history_offset];
-        CollisionState state = CollisionState::load(h);
+        CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1]};
         // Between two spheres their relative tangential motion pulls the
         // centres apart at |vt|^2 / d; a flat wall's normal does not turn.
         double pull = 0.0;
@@ -154,8 +152,11 @@ private:
         }
         const CollisionStep step = exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state,
                                                       sidata.deltan, -sidata.vn, pull);
-        if (sidata.computeflag && sidata.shearupdate) state.save(h);
-        table.setCollisionStep(step, meff);
+        if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
+        CollisionStep forTangential = step;
+        forTangential.friction *= meff;  // as a force [N]
+        forTangential.meff = meff;
+        table.setCollisionStep(forTangential);
         return meff * step.force;
     }
 

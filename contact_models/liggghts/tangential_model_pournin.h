@@ -40,16 +40,17 @@ public:
 
     void registerSettings(Settings&) {}
     // exactCollision (model viscoelastic registered its state first): the
-    // continuous rate's offset from the samples' where the cap bound within a
-    // step (h[6], unused then, flags it: 1, and 2 if it ended the step
-    // sliding; zero otherwise). Only then: restart files of the other
-    // settings keep their contact history.
+    // normal force the step foresaw for the next, and the continuous rate's
+    // offset from the samples' where the cap bound within a
+    // step (h[6], unused then, flags it: 1, and 2 if it ended the step sliding). Only then: restart files of the
+    // other settings keep their contact history.
     void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
     {
         if (cmb->get_history_offset("viscoelastic_phase") < 0) return;
         rate_offset = hsetup->add_history_value("pournin_rate_x", "1");
         hsetup->add_history_value("pournin_rate_y", "1");
         hsetup->add_history_value("pournin_rate_z", "1");
+        hsetup->add_history_value("pournin_forecast", "0");
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -83,20 +84,14 @@ public:
         // h[6], the unclipped normal force of the step before, serves the
         // nominal spring only
         viscoelastic::ExactTangentialState e;
-        double* const r = exact ? &sidata.contact_history[rate_offset] : nullptr;
         if (exact) {
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
+            const double* const r = &sidata.contact_history[rate_offset];
+            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.rateOffset = Vec3(r[0], r[1], r[2]), e.forecast = r[3];
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
-            if (!step.continuous) {  // held, ended or packed: exactTangentialForce's per-step bound, inline
-                Ft = viscoelastic::pourninExactTangentialForce(state, normal, drive.rate, drive.mass, laws.tangential, step,
-                                                               limit, advance);
-            } else {
-                e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0;
-                if (e.offPath) e.rateOffset = Vec3(r[0], r[1], r[2]);
-                Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential,
-                                                        laws.normal, step, mu * step.meff, limit, advance);
-            }
+            Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
+                                                    step, mu * step.meff, limit, advance);
         } else {
             state.normalForce = h[6];
             Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
@@ -109,9 +104,11 @@ public:
                 h[3 + d] = state.normal[d];
             }
             if (!exact) h[6] = state.normalForce;
-            else if (e.offPath || h[6] != 0.0) {  // (zero stays zero: most contacts)
+            else {
                 h[6] = e.offPath ? (e.sliding ? 2.0 : 1.0) : 0.0;
+                double* const r = &sidata.contact_history[rate_offset];
                 for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
+                r[3] = e.forecast;
             }
         }
 
@@ -135,7 +132,7 @@ public:
         double* const h = &scdata.contact_history[history_offset];
         for (int d = 0; d < 7; ++d) h[d] = 0.0;
         if (rate_offset >= 0)
-            for (int d = 0; d < 3; ++d) scdata.contact_history[rate_offset + d] = 0.0;
+            for (int d = 0; d < 4; ++d) scdata.contact_history[rate_offset + d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}

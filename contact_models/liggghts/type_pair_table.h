@@ -56,13 +56,7 @@ public:
     // What the normal step of the contact in hand decided, for `tangential
     // pournin`: LIGGGHTS calls the normal and then the tangential model of
     // one contact back to back, so it needs no place in the contact history.
-    // Its friction bound as a force, and the contact's meff.
-    void setCollisionStep(const CollisionStep& s, double meff) const
-    {
-        step_ = s;
-        step_.friction *= meff;
-        step_.meff = meff;
-    }
+    void setCollisionStep(const CollisionStep& s) const { step_ = s; }
     const CollisionStep& collisionStep() const { return step_; }
 
 private:

@@ -293,54 +293,6 @@ TEST(ExactCollision, AnEndedContactHeldByOthersGoesOnUnderTheStepLaw)
                 1e-9 * law.kStep * deep);
 }
 
-TEST(ExactCollision, AContactWhoseForceOthersMoveIsPackedToItsEnd)
-{
-    // A binary contact's force comes as its last step foresaw (its
-    // tangential spring may follow the cap through the step); one that other
-    // contacts push on (from step 3: a steady push of a tenth of the peak
-    // force, which moves the force at that step by 2 % of its scale, twenty
-    // times what a binary contact is allowed) is packed from then to its end
-    // (the per-step bound), with the same normal force; a new touch is binary
-    // again.
-    const FreeOscillator o = pournin(0.56);
-    const double dt = kTc / 7.3, peak = o.k * kTc / kPi;  // unit approach rate
-    const StepLaw law = stepLaw(o.k, o.c, dt, false);
-    for (const double push : {0.0, 0.1 * peak}) {
-        CollisionState state;
-        double x = 0.37 * dt, v = 1.0;
-        int steps = 0;
-        for (; x > 0.0 && steps < 100; ++steps) {
-            if (steps >= 3) v -= dt * push;
-            CollisionState unpacked = state;
-            unpacked.packed = false;
-            const CollisionStep s = exactCollisionStep(law, state, x, v);
-            const bool over = state.phase == CollisionPhase::ended || state.phase == CollisionPhase::held;
-            if (!over) {
-                EXPECT_EQ(state.packed, push > 0.0 && steps >= 3) << "push " << push << ", step " << steps;
-                EXPECT_EQ(s.continuous, !state.packed) << "push " << push << ", step " << steps;
-                const CollisionStep same = exactCollisionStep(law, unpacked, x, v);
-                EXPECT_EQ(s.force, same.force);
-                EXPECT_EQ(s.friction, same.friction);
-            }
-            // the contact history keeps it all
-            const CollisionState back = [&] { double h[CollisionState::kHistory]; state.save(h); return CollisionState::load(h); }();
-            EXPECT_EQ(back.phase, state.phase);
-            EXPECT_EQ(back.packed, state.packed);
-            EXPECT_EQ(back.previousOffset, state.previousOffset);
-            EXPECT_EQ(back.forecast, state.forecast);
-            v -= dt * s.force;
-            x += dt * v;
-        }
-        EXPECT_LT(steps, 20);
-        // apart, and touching again: a new, binary contact
-        state.phase = CollisionPhase::ended;
-        const CollisionStep again = exactCollisionStep(law, state, 0.5 * dt, 1.0);
-        EXPECT_GE(again.sinceStart, 0.0);
-        EXPECT_FALSE(state.packed);
-        EXPECT_TRUE(again.continuous);
-    }
-}
-
 TEST(ExactCollision, APullOnTheOverlapIsFollowedExactly)
 {
     // Between two spheres the overlap obeys x'' = -F - pull (pull = |vt|^2 / d,
