@@ -578,8 +578,8 @@ TEST(ExactCollision, CappedFlowMatchesAnExactSolutionOfTheLaw)
                 exactWallCollisionAtPhase(normal, tangential, (k + 0.5) / 32.0, vt, m.mu, [&](double) { return mt; });
             worst = std::max(worst, std::fabs(e.tangential - exit) / vt);
         }
-        EXPECT_LT(worst, 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt
-                                                << " tc/dt " << ratio << " limitForce " << limitForce;
+        EXPECT_LT(worst, 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt << " tc/dt "
+                               << ratio << " limitForce " << limitForce;
         ++cases;
     }
     std::printf("%d cases\n", cases);
