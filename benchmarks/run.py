@@ -9,6 +9,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   accuracy      dt = tc/5 ... tc/81, cost against two-body and drum errors (same slab), ~40 min
   multicontact  the dense column with exactRestitution, ~10 min
   collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
+  friction_sweep  exactCollision's friction on 20,000 random wall collisions against the law, ~6 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
   stability_exact  the dense column under exactRestitution's and exactCollision's coefficients, ~1 h
   reductions    6 / 12 / 24 mm periods from the grid, ~1 h
@@ -28,6 +29,7 @@ import harness  # noqa: E402
 import common  # noqa: E402
 import accuracy  # noqa: E402
 import collision  # noqa: E402
+import friction_sweep  # noqa: E402
 import core  # noqa: E402
 import cost  # noqa: E402
 import full_scene  # noqa: E402
@@ -50,6 +52,7 @@ def settings(restart):
         "accuracy": (accuracy, [["--restart", slab]]),
         "multicontact": (multicontact, [[]]),
         "collision": (collision, [["--rounds", "15"]]),
+        "friction_sweep": (friction_sweep, [[]]),
         "stability": (stability, [["--scenes", "binary,column"],
                                   ["--scenes", "drum", "--restart", slab],
                                   ["--scenes", "drum", "--restart", slab, "--drum-runs", "0.3:hooke",
@@ -79,7 +82,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Two-body collisions: YADE and `limitForce on`", [yade_collide]),
         ("## 3. Accuracy against cost", [accuracy]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
-        ("### Every single collision exact: exactCollision", [collision]),
+        ("### Every single collision exact: exactCollision", [collision, friction_sweep]),
         ("## 4. Stability map", [stability]),
         ("### The guard under the exact laws", [stability_exact]),
         ("## 5. Scaling: the full drum", [scaling]),

@@ -21,11 +21,13 @@
 //    exit rate X'(s_e).
 // Friction follows the law's instantaneous cap mu |Fn(t)| through the step
 // (cappedFlow, below): where the spring stays clear of the cap one step on,
-// the step is the plain law and a check; a step that reaches the cap runs
-// out of line. A contact between two steps is otherwise untouched: a few
-// multiplications and comparisons per step more than the plain law (more
-// with a pull, between two spheres); the start and end need a few
-// transcendental evaluations, once per contact.
+// and its excess over the cap, extrapolated from either end of the step at
+// its rate there, too, the step is the plain law and a check; a step that
+// may reach the cap runs out of line and finds every event inside it. A
+// contact between two steps is otherwise untouched: a few multiplications
+// and comparisons per step more than the plain law (more with a pull,
+// between two spheres); the start and end need a few transcendental
+// evaluations, once per contact.
 //
 // Per unit mass; the LIGGGHTS model multiplies by meff. State per contact:
 // its phase (fresh, touching, ended), kept in the contact history.
@@ -41,6 +43,13 @@
 #include "pournin.h"
 
 namespace viscoelastic {
+
+// a x + b y, component-wise: as an Eigen expression in the per-step code the
+// compiler calls its loop out of line (about 15 instructions a call).
+inline Vec3 combine(double a, const Vec3& x, double b, const Vec3& y)
+{
+    return Vec3(a * x[0] + b * y[0], a * x[1] + b * y[1], a * x[2] + b * y[2]);
+}
 
 // Position and rate of a free damped oscillator x'' = -k x - c x'.
 struct Motion {
@@ -102,13 +111,17 @@ struct StepLaw {
     // on (X x_n + V v_{n-1/2} + A pull): where the tangential cap mu |Fn| stands.
     double nowX = 0, nowV = 0, nowA = 0, nextX = 0, nextV = 0, nextA = 0;
     // As a tangential oscillator: the force k xi + c u one step on from the
-    // spring and rate the step law gives there (phiX xi_{n+1} + phiV w_{n+1/2}).
-    double phiX = 0, phiV = 0;
+    // spring and rate the step law gives there (phiX xi_{n+1} + phiV w_{n+1/2}),
+    // and its rate k u - c (k xi + c u) (phiRateX xi_{n+1} + phiRateV w_{n+1/2}).
+    double phiX = 0, phiV = 0, phiRateX = 0, phiRateV = 0;
     // What ends the contact, one step on, must exceed endMargin x_n to go on:
     // a next sample on the surface within round-off would fall to or below
     // zero in the leapfrog, and the end step (its exit rate, its friction)
     // would never run. The common step tests endX - endMargin (endGoX).
     double endMargin = 0, endGoX = 0;
+    // The force's rate one step on along a free motion m (of x + pull / k):
+    // rateStepX m.x + rateStepU m.u.
+    double rateStepX = 0, rateStepU = 0;
     double inverseDt = 0;
     // The flows over -dt/2, dt/2 and dt: a contact's start and end take the
     // motion there without a transcendental evaluation.
@@ -156,8 +169,11 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.nowX = k + c * s.uX, s.nowV = c * s.uV, s.nowA = s.nowX / k - 1.0;
     s.nextX = s.o.ending(fromX, true), s.nextV = s.o.ending(fromV, true), s.nextA = s.nextX / k - 1.0;
     s.phiX = s.nowX, s.phiV = s.nowV;
+    s.phiRateX = k * s.uX - c * s.phiX, s.phiRateV = k * s.uV - c * s.phiV;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.endGoX = s.endX - s.endMargin;
+    s.rateStepX = s.o.forceRate(s.o.after({1.0, 0.0}, s.flowStep));
+    s.rateStepU = s.o.forceRate(s.o.after({0.0, 1.0}, s.flowStep));
     s.inverseDt = 1.0 / dt;
     return s;
 }
@@ -628,7 +644,7 @@ inline SpringDrive springDrive(const Vec3& vtr, const Vec3& n, double overlap, d
 {
     if (!(mj > 0.0)) return {vtr - ((ri - cri) * wi).cross(n), rigidArmMass(meff, mi, ri, cri, 0.0, 0.0, 0.0)};
     const double s = 1.0 - overlap / (ri + rj);
-    return {s * vtr - ((ri - s * cri) * wi + (rj - s * crj) * wj).cross(n), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s)};
+    return {s * vtr - combine(ri - s * cri, wi, rj - s * crj, wj).cross(n), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s)};
 }
 
 // `tangential pournin` under exactCollision: law.h's pourninTangentialForce
@@ -713,6 +729,42 @@ inline TangentialMotion freeTangential(const FreeOscillator& o, const Tangential
 
 }  // namespace detail
 
+// The rate of the spring's excess over the cap, |phi| - cap, from phi, its
+// norm n, its rate and the cap's rate.
+inline double excessRate(const Vec3& phi, double n, const Vec3& rate, double capRate)
+{
+    return (n > 0.0 ? phi.dot(rate) / n : rate.norm()) - capRate;
+}
+
+// Whether a function below zero at both ends of a span h (`f` <= 0, `rate`
+// its rate there) may reach zero inside: extrapolated from either end at its
+// rate there it would. Below both tangents, a hump that is concave (as near
+// its top) stays below zero.
+inline bool mayPeak(double f0, double rate0, double f1, double rate1, double h)
+{
+    return f0 + std::max(rate0, 0.0) * h > 0.0 || f1 - std::min(rate1, 0.0) * h > 0.0;
+}
+
+namespace detail {
+
+// The first maximum in (t, end) of a function with the given rate (rate0 at
+// t), from its rate at the quarters: a root of the rate between a rising and
+// the next falling sample; -1 if none.
+template <class Rate>
+double firstPeak(Rate rate, double t, double end, double rate0)
+{
+    double before = t, rateBefore = rate0;
+    for (int i = 1; i <= 4; ++i) {
+        const double tau = i == 4 ? end : t + 0.25 * i * (end - t), r = rate(tau);
+        if (rateBefore > 0.0 && r < 0.0)
+            return illinoisRoot([&](double s) { return -rate(s); }, before, tau, -rateBefore, -r);
+        before = tau, rateBefore = r;
+    }
+    return -1.0;
+}
+
+}  // namespace detail
+
 // The tangential motion from `m` at time a to time b (a <= b, b - a under
 // half the normal's period: Fn turns at most once in between). `spanFlow`:
 // the tangential flow over src.span, used from a = 0 (a step without events
@@ -747,20 +799,35 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
     // sticking again met the cap at once: the slide only grazed the re-stick
     // condition, and goes on to where it really unloads
     bool grazing = false;
-    for (int event = 0; event < 6 && t < b; ++event) {
+    // (events end where under 1e-12 of the span is left: Fn's zero found
+    // within round-off of the span's end otherwise leaves an interval of
+    // round-off on which stick and slide alternate)
+    const double rest = 1e-12 * (b - a);
+    for (int event = 0; event < 6 && b - t > rest; ++event) {
         const double cap = capAt(fn);
         const Vec3 phi = o.k * m.xi + o.c * m.u;
         const double p = phi.norm();
-        bool sliding = false;
+        bool sliding = false, leaves = false;
         if (onset || onCap || (!restuck && p >= cap * (1.0 - 1e-9))) {
             // at the cap's zero the force is zero up to round-off, whose
-            // direction is noise: the slide keeps its direction through it
+            // direction is noise: the slide keeps its direction through it;
+            // one that starts there (onset) takes the direction the spring
+            // loads in, k u - c phi (with mu = 0 on a spinning sphere, a
+            // direction kept from before could face u: the slide stopped
+            // at once, stick and slide alternating at one instant)
             if (p > 1e-9 * (o.k * m.xi.norm() + o.c * m.u.norm())) dir = phi / p;
-            else if (dir.squaredNorm() == 0.0 && m.u.squaredNorm() > 0.0) dir = m.u.normalized();
+            else if (onset || dir.squaredNorm() == 0.0) {
+                const Vec3 loads = o.k * m.u - o.c * phi;
+                if (loads.squaredNorm() > 0.0) dir = loads.normalized();
+            }
             if (p > cap || (onCap && dir.squaredNorm() > 0.0)) m.xi = (cap * dir - o.c * m.u) / o.k, r.stuck = false;  // onto the cap
             sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, src.side(mn, fn));
+            leaves = !sliding;
         }
-        const bool justRestuck = restuck;
+        // on the cap and leaving it (stuck again, or the spring unloads from
+        // it: at Fn's zero, where the cap then grows faster than the spring
+        // loads, it sticks there; without this it slid on at once)
+        const bool justRestuck = restuck || leaves;
         restuck = onset = onCap = false;
         const double end = t < zero ? std::min(zero, b) : b;
         // the normal motion at `end` (b's is at hand)
@@ -780,7 +847,35 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             const TangentialMotion q = free(end);
             const double overEnd = (o.k * q.xi + o.c * q.u).norm() - capThen(end);
             double to = end;
-            if (overEnd > 0.0) {
+            // The spring may meet the cap inside the step and leave it again
+            // before the end (a wall contact at tc/4.5 sliding from 0.55 to
+            // 0.73 of its duration, then again from 0.94): the excess then
+            // peaks inside. Where it might (mayPeak; after a re-stick it first
+            // falls, then may rise), its rate at the quarters brackets the
+            // first peak: a slide from before it, or, below the cap there,
+            // the rest from it.
+            double from = t, overFrom = justRestuck ? 0.0 : std::min(p - cap, 0.0);
+            double peak = -1.0, overPeak = 0.0;
+            if (end < zero) {
+                const double side = src.side(mn, fn);
+                const auto overRate = [&](double tau) {  // d/dtau of `over`
+                    const TangentialMotion w = free(tau);
+                    const Vec3 f = o.k * w.xi + o.c * w.u;
+                    return excessRate(f, f.norm(), o.k * w.u - o.c * f, src.capRate(normalAt(tau), side));
+                };
+                const double rate0 = justRestuck ? 0.0 : overRate(t);
+                if (justRestuck || mayPeak(overFrom, rate0, overEnd, overRate(end), end - t) ||
+                    phi.dot(o.k * q.xi + o.c * q.u) < 0.0) {  // |phi| has a corner at zero
+                    peak = detail::firstPeak(overRate, t, end, rate0);
+                    if (peak >= 0.0) overPeak = over(peak);
+                }
+                if (peak >= 0.0 && !(overPeak > 1e-12 * capThen(peak)))  // below the cap there
+                    from = peak, overFrom = std::min(overPeak, 0.0), peak = -1.0;
+            }
+            if (peak >= 0.0) {
+                to = detail::illinoisRoot(over, t, peak, overFrom, overPeak);
+                r.stuck = false, onset = true;
+            } else if (overEnd > 0.0) {
                 // already at the cap (round-off): sliding from here, without a
                 // root -- but not just after sticking again, where the free
                 // spring first unloads and meets the cap later in the step.
@@ -791,9 +886,9 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
                 // excess, not from that round-off (a root at the start, then
                 // sliding again: 3.2e-3 of vt off at one phase of 7,680 in
                 // tests/contact_models/test_collision)
-                to = (!justRestuck && p >= cap * (1.0 - 1e-9))
+                to = (!justRestuck && from == t && p >= cap * (1.0 - 1e-9))
                          ? t
-                         : detail::illinoisRoot(over, t, end, justRestuck ? 0.0 : std::min(p - cap, 0.0), overEnd);
+                         : detail::illinoisRoot(over, from, end, overFrom, overEnd);
                 r.stuck = false, onset = true;
                 grazing = justRestuck && to - t <= 1e-9 * (end - t);
             }
@@ -820,10 +915,28 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             double to = end;
             Motion q = normalAt(end);
             const double unloadEnd = unloadAt(q, end);
-            if (!(unloadEnd > 0.0)) {
-                const double here = grazing ? 0.0 : unloadAt(mn, t);
+            const double here = grazing ? 0.0 : unloadAt(mn, t);
+            // Still sliding at the end, the spring may have stuck in between
+            // (a cap falling fast near the end holds a spring that stuck
+            // before): the condition then dips inside (as the excess peaks).
+            double dip = -1.0, unloadDip = 0.0;
+            if (unloadEnd > 0.0 && here > 0.0) {
+                const auto unloadRate = [&](double tau) {  // d/dtau of `unload`
+                    const Motion n = normalAt(tau);
+                    const double f = tau == zero ? 0.0 : src.force(n), df = src.normal->forceRate(n);
+                    const double ddf = -src.normal->k * (f + src.pull) - src.normal->c * df;
+                    return -o.k * capAt(f) - (side > 0.0 ? src.kappa : -src.kappa) * (o.c * df + ddf);
+                };
+                const double rate0 = unloadRate(t);
+                if (mayPeak(-here, -rate0, -unloadEnd, -unloadRate(end), end - t)) {
+                    dip = detail::firstPeak([&](double tau) { return -unloadRate(tau); }, t, end, -rate0);
+                    if (dip >= 0.0 && !((unloadDip = unload(dip)) < 0.0)) dip = -1.0;
+                }
+            }
+            if (dip >= 0.0 || !(unloadEnd > 0.0)) {
+                const double until = dip >= 0.0 ? dip : end, last = dip >= 0.0 ? unloadDip : unloadEnd;
                 to = (here > 0.0 || grazing)
-                         ? detail::illinoisRoot([&](double tau) { return -unload(tau); }, t, end, -here, -unloadEnd)
+                         ? detail::illinoisRoot([&](double tau) { return -unload(tau); }, t, until, -here, -last)
                          : t;
                 if (to != end) q = src.at(to);
                 restuck = true;
@@ -860,10 +973,13 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
 // continuous normal motion (normal.continuous). The leapfrog's rate over the
 // step is the contact point's mean rate, so the next sample lies on the
 // continuous spring; where the cap bound within the step the samples no
-// longer define the continuous rate, and the state keeps the difference
-// (rateOffset, offPath) for the next step. The common step (sticking, on the
-// samples' oscillator, the cap clear one step on) costs the plain step law
-// and a check. `muMeff`: mu times the contact's meff (the cap per unit Fn).
+// longer define the continuous rate, and the state keeps its difference from
+// the drive's rate (rateOffset, offPath) for the next step: what moves the
+// drive between steps without a force (a spinning sphere's contact point on
+// the turning normal) then moves the contact point too, not a force. The
+// common step (sticking, on the samples' oscillator, the cap clear one step
+// on) costs the plain step law and a check. `muMeff`: mu times the contact's
+// meff (the cap per unit Fn).
 struct ExactTangentialState {
     Vec3 rateOffset = Vec3::Zero();
     bool offPath = false;
@@ -898,7 +1014,7 @@ inline bool followsItsForecast(const CollisionStep& normal, double forecast)
         const CappedFlow before = cappedFlow(law.o, {Vec3::Zero(), w}, src, -normal.sinceStart, 0.0);
         at = before.end, stuck = before.stuck, e.sliding = before.sliding;
     } else {
-        at = {xi, law.uX * xi + law.uV * w + (e.offPath ? e.rateOffset : Vec3::Zero())};
+        at = {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
     }
     if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
         const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter);
@@ -910,7 +1026,7 @@ inline bool followsItsForecast(const CollisionStep& normal, double forecast)
     const Vec3 next = step.displacement / dt;  // w_{n+1/2}
     xi = step.end.xi - step.displacement;      // the next step adds dt w_{n+1/2}
     e.offPath = !(stuck && step.stuck);
-    e.rateOffset = e.offPath ? Vec3(step.end.u - (law.uX * step.end.xi + law.uV * next)) : Vec3::Zero();
+    e.rateOffset = e.offPath ? Vec3(step.end.u - next) : Vec3::Zero();
     return (next - w) / dt;
 }
 
@@ -936,10 +1052,25 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
     bool common = !e.offPath && std::max(normal.sinceStart, normal.endsAfter) < 0.0 && normal.forceNow * normal.forceNext > 0.0;
     if (common) {
         a = -(law.kStep * xi + law.cStep * vt);
-        const Vec3 next = vt + law.dt * a;
-        const Vec3 phi = law.phiX * (xi + law.dt * next) + law.phiV * next;
+        const Vec3 next = vt + law.dt * a, xi1 = xi + law.dt * next;
+        const Vec3 phi = combine(law.phiX, xi1, law.phiV, next);
         const double cap = kappa * normal.forceNext;
         common = phi.squaredNorm() <= cap * cap;
+        if (common) {
+            // clear of the cap at the end, and in between (mayPeak, from the
+            // end first; else cappedFlow looks inside)
+            const double side = normal.forceNext > 0.0 ? kappa : -kappa, h = law.dt;
+            const double n1 = phi.norm();
+            const double capRate1 = side * (normalLaw.rateStepX * normal.now.x + normalLaw.rateStepU * normal.now.u);
+            const double rate1 = excessRate(phi, n1, combine(law.phiRateX, xi1, law.phiRateV, next), capRate1);
+            common = !(n1 - std::fabs(cap) - std::min(rate1, 0.0) * h > 0.0);
+            if (common) {
+                const Vec3 phi0 = combine(law.phiX, xi, law.phiV, vt);
+                const double n0 = phi0.norm(), capRate0 = side * normalLaw.o.forceRate(normal.now);
+                const double rate0 = excessRate(phi0, n0, combine(law.phiRateX, xi, law.phiRateV, vt), capRate0);
+                common = !(n0 - std::fabs(kappa * normal.forceNow) + std::max(rate0, 0.0) * h > 0.0) && phi0.dot(phi) >= 0.0;
+            }
+        }
     }
     ExactTangentialState ee = e;
     if (!common) {

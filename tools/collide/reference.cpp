@@ -409,4 +409,57 @@ Reference reference(const Case& c)
     return {integrateContactOde(c), "ODE"};
 }
 
+double cappedLawExit(const FreeOscillator& n, const FreeOscillator& s, bool limitForce, double kappa, double vt0,
+                     int scan)
+{
+    const double end = limitForce ? n.forceZeroFrom({0.0, 1.0}, std::atan2(n.omega, n.lambda) / n.omega) : kPi / n.omega;
+    const double zero = limitForce ? end : n.forceZeroFrom({0.0, 1.0}, 0.0);  // where Fn turns
+    const auto motion = [&](double t) { return n.after({0.0, 1.0}, t); };
+    const auto fn = [&](double t) { return n.ending(motion(t), true); };
+    const auto cap = [&](double t) { return kappa * std::fabs(fn(t)); };
+    const auto capRate = [&](double t) { return kappa * (fn(t) >= 0.0 ? 1.0 : -1.0) * n.forceRate(motion(t)); };
+    const auto impulse = [&](double a, double b) {  // |integral of Fn| over [a, b], split at its zero
+        const auto part = [&](double p, double q) { return std::fabs(motion(p).u - motion(q).u); };
+        return (a < zero && b > zero) ? part(a, zero) + part(zero, b) : part(a, b);
+    };
+    const auto bisect = [&](auto yes, double lo, double hi) {  // yes(lo) false, yes(hi) true
+        for (int i = 0; i < 200 && hi - lo > 1e-17 * end; ++i) (yes(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+        return hi;
+    };
+    const auto firstWhere = [&](auto yes, double from) {  // the first time after `from` where yes(t), or end
+        for (double a = from; a < end;) {
+            double b = std::min(a + end / scan, end);
+            if (a < zero && b > zero) b = zero;
+            if (yes(b)) return bisect(yes, a, b);
+            a = b;
+        }
+        return -1.0;
+    };
+    double t = 0.0, xi = 0.0, u = vt0, dir = 0.0;
+    bool sliding = false;
+    while (t < end) {
+        const double t0 = t, xi0 = xi, u0 = u;
+        if (!sliding) {
+            const auto free = [&](double tau) { return s.after({xi0, u0}, tau - t0); };
+            const double onset = firstWhere([&](double tau) {
+                const Motion q = free(tau);
+                return std::fabs(s.k * q.x + s.c * q.u) > cap(tau);
+            }, t0);
+            t = onset < 0.0 ? end : onset;
+            xi = free(t).x, u = free(t).u;
+            if (onset >= 0.0) sliding = true, dir = s.k * xi + s.c * u > 0.0 ? 1.0 : -1.0;
+        } else {
+            const double d = dir;
+            const auto rate = [&](double tau) { return u0 - kappa * d * impulse(t0, tau); };
+            const double restick = firstWhere([&](double tau) {
+                return s.k * rate(tau) * d - s.c * cap(tau) - capRate(tau) < 0.0;
+            }, t0);
+            t = restick < 0.0 ? end : restick;
+            u = rate(t), xi = (cap(t) * d - s.c * u) / s.k;
+            if (restick >= 0.0) sliding = false;
+        }
+    }
+    return u;
+}
+
 }  // namespace collide

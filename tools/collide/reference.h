@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/collision.h"
 #include "core/viscoelastic.h"
 
 namespace collide {
@@ -118,5 +119,15 @@ struct Reference {
     std::string source;  // "closed form (...)" or "ODE"
 };
 Reference reference(const Case& c);
+
+// The continuous law with its instantaneous Coulomb cap for a wall collision
+// in 1D, solved independently of cappedFlow: the normal motion in closed form
+// from (0, 1), the spring free while sticking and on the cap while sliding,
+// each event found by scanning the whole contact in `scan` intervals for a
+// change of regime and bisecting it to 1e-17 tc. Normal per unit meff = 1,
+// the spring per unit m_t (kappa: the cap per unit Fn). Returns the contact
+// point's rate after the contact.
+double cappedLawExit(const viscoelastic::FreeOscillator& n, const viscoelastic::FreeOscillator& s, bool limitForce,
+                     double kappa, double vt0, int scan = 200000);
 
 }  // namespace collide

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""exactCollision's friction over the whole parameter range: random wall collisions (en 0.05-0.98,
+et 0.1-0.98, mu 0.05-3, vt/vn 0.02-6, tc/dt 4.2-40, limitForce off and on; log-uniform where the
+range spans decades), stepped by the physics core at random start phases, against the continuous
+law with its instantaneous Coulomb cap solved independently (collide::cappedLawExit: every event
+found by a scan of the whole contact and bisection). Runs build/benchmarks/friction_sweep.
+Writes OUT/friction_sweep.csv (per case: its worst phase, in units of vt) and OUT/friction_sweep.json."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+import harness  # noqa: E402
+import common  # noqa: E402
+
+LEVELS = (1e-9, 1e-6, 1e-3)
+
+
+def parser():
+    p = harness.options(__doc__, out=common.RESULTS)
+    p.add_argument("--binary", type=Path, default=harness.REPO / "build/benchmarks/friction_sweep",
+                   help="the sweep program (default: build/benchmarks/friction_sweep)")
+    p.add_argument("--cases", type=int, default=20000, help="random cases (default: %(default)s)")
+    p.add_argument("--phases", type=int, default=256, help="random start phases per case (default: %(default)s)")
+    p.add_argument("--seed", type=int, default=1, help="seed of the cases (default: %(default)s)")
+    return p
+
+
+def run(args):
+    if not args.binary.exists():
+        raise harness.RunFailed(f"{args.binary} missing: build with -DBUILD_BENCHMARKS=ON -DBUILD_TOOLS=ON")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    harness.say("friction_sweep", f"{args.cases} cases x {args.phases} phases ...")
+    with open(out / "friction_sweep.csv", "w") as csv_out:
+        subprocess.run([str(args.binary), "--cases", str(args.cases), "--phases", str(args.phases),
+                        "--seed", str(args.seed)], stdout=csv_out, check=True)
+    harness.write_json(out / "friction_sweep.json", {"cases": args.cases, "phases": args.phases, "seed": args.seed,
+                                                     "date": common.today()})
+
+
+def chart(rows, path):
+    fig, ax = harness.figure(title="exactCollision's friction: worst start phase of each random case")
+    for lf, color in ((0, "C0"), (1, "C3")):
+        rs = [r for r in rows if int(r["limitForce"]) == lf]
+        ax.scatter([r["tc_over_dt"] for r in rs], [max(r["worst_err"], 1e-17) for r in rs], s=2, color=color,
+                   alpha=0.4, label=f"limitForce {'on' if lf else 'off'}")
+    ax.axhline(1e-6, color="grey", lw=0.8)
+    ax.set(xscale="log", yscale="log", xlabel="tc / dt", ylabel="worst |vt_exit - law| / vt", ylim=(1e-17, 1))
+    ax.legend(fontsize=8, markerscale=4)
+    harness.save(fig, path)
+
+
+@common.section_of("friction_sweep", "friction_sweep")
+def section(res, m, rows):
+    chart(rows, res.path("friction_sweep.png"))
+    worst = max(rows, key=lambda r: r["worst_err"])
+    counts = ", ".join(f"{sum(r['worst_err'] > level for r in rows)} beyond {level:g}" for level in LEVELS)
+    return (
+        f"Friction over the whole range: {len(rows)} random wall collisions (en 0.05–0.98, et 0.1–0.98, "
+        "mu 0.05–3, vt/vn 0.02–6,\ntc/dt 4.2–40, limitForce off and on) at "
+        f"{m['phases']} random start phases each, the contact point's exit rate against the\ncontinuous law "
+        "solved independently (`collide::cappedLawExit`), in units of vt. Cases with their worst phase\n"
+        f"{counts}; the worst {worst['worst_err']:.1e} (en {worst['en']:.3g}, et {worst['et']:.3g}, "
+        f"mu {worst['mu']:.3g}, vt/vn {worst['vt_over_vn']:.3g}, tc/dt {worst['tc_over_dt']:.3g}, "
+        f"limitForce {'on' if worst['limitForce'] else 'off'}).\nThe grey line is 1e-6, the tests' tolerance.\n\n"
+        + res.image("friction sweep", "friction_sweep.png") + "\n"
+        + common.sh(common.command("friction_sweep.py", cases=m["cases"] if m["cases"] != 20000 else None,
+                                   phases=m["phases"] if m["phases"] != 256 else None,
+                                   seed=m["seed"] if m["seed"] != 1 else None)))
+
+
+if __name__ == "__main__":
+    run(parser().parse_args())
