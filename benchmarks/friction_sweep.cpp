@@ -44,8 +44,8 @@ int main(int argc, char** argv)
         const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);  // as the model builds it
         const double exit = collide::cappedLawExit(o->normal, o->tangential, limitForce, mu / mt, vt);
         std::mt19937 gp(seed + i);
-        double worst = 0.0, worstPhase = 0.0;
-        for (int k = 0; k < phases; ++k) {
+        double worst = std::isnan(exit) ? exit : 0.0, worstPhase = 0.0;  // NaN: the reference did not finish
+        for (int k = 0; k < phases && !std::isnan(exit); ++k) {
             const double phase = 1.0 - U(gp);
             const FrictionalExit e = exactWallCollisionAtPhase(normal, tangential, phase, vt, mu, [&](double) { return mt; });
             const double err = std::fabs(e.tangential - exit) / vt;
@@ -53,6 +53,6 @@ int main(int argc, char** argv)
         }
         std::printf("%d,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.3e,%.17g\n", i, en, et, mu, vt, ratio, int(limitForce),
                     exit, worst, worstPhase);
-        if ((i + 1) % 1000 == 0) std::fprintf(stderr, "friction_sweep: %d of %d cases\n", i + 1, cases);
+        if ((i + 1) % 1000 == 0) std::fprintf(stderr, "friction_sweep: %d of %d cases\n", i + 1, cases), std::fflush(stdout);
     }
 }

@@ -437,7 +437,8 @@ double cappedLawExit(const FreeOscillator& n, const FreeOscillator& s, bool limi
     };
     double t = 0.0, xi = 0.0, u = vt0, dir = 0.0;
     bool sliding = false;
-    while (t < end) {
+    for (int events = 0; t < end; ++events) {
+        if (events > 1000) return std::nan("");  // stick and slide alternating without end
         const double t0 = t, xi0 = xi, u0 = u;
         if (!sliding) {
             const auto free = [&](double tau) { return s.after({xi0, u0}, tau - t0); };

@@ -126,7 +126,8 @@ Reference reference(const Case& c);
 // each event found by scanning the whole contact in `scan` intervals for a
 // change of regime and bisecting it to 1e-17 tc. Normal per unit meff = 1,
 // the spring per unit m_t (kappa: the cap per unit Fn). Returns the contact
-// point's rate after the contact.
+// point's rate after the contact; NaN where stick and slide alternate
+// without end (more than 1,000 events: seen once in 20,000 random cases).
 double cappedLawExit(const viscoelastic::FreeOscillator& n, const viscoelastic::FreeOscillator& s, bool limitForce,
                      double kappa, double vt0, int scan = 200000);
 
