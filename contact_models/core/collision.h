@@ -805,6 +805,8 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
     // within round-off of the span's end otherwise leaves an interval of
     // round-off on which stick and slide alternate)
     const double rest = 1e-12 * (b - a);
+    // round-off of the spring's force at the cap's scale over the span
+    const double noise = 1e-12 * src.kappa * std::max(std::fabs(fn), std::fabs(fb));
     for (int event = 0; event < 6 && b - t > rest; ++event) {
         const double cap = capAt(fn);
         const Vec3 phi = o.k * m.xi + o.c * m.u;
@@ -817,10 +819,12 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             // loads in, k u - c phi (with mu = 0 on a spinning sphere, a
             // direction kept from before could face u: the slide stopped
             // at once, stick and slide alternating at one instant)
-            if (p > 1e-9 * (o.k * m.xi.norm() + o.c * m.u.norm())) dir = phi / p;
+            // (a direction from round-off, as a head-on contact's at Fn's
+            // zero, would slide it along the normal: below `noise`, none)
+            if (p > std::max(1e-9 * (o.k * m.xi.norm() + o.c * m.u.norm()), noise)) dir = phi / p;
             else if (onset || dir.squaredNorm() == 0.0) {
                 const Vec3 loads = o.k * m.u - o.c * phi;
-                if (loads.squaredNorm() > 0.0) dir = loads.normalized();
+                if (loads.norm() * (b - a) > noise) dir = loads.normalized();
             }
             if (p > cap || (onCap && dir.squaredNorm() > 0.0)) m.xi = (cap * dir - o.c * m.u) / o.k, r.stuck = false;  // onto the cap
             sliding = onset || o.k * m.u.dot(dir) - o.c * cap > src.capRate(mn, src.side(mn, fn));
