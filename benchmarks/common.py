@@ -129,6 +129,18 @@ class Results:
         return f"![{alt}]({os.path.relpath(self.path(name), self.readme)})\n"
 
 
+def program_option(p, name, what):
+    """--binary: a program of ours built in build/benchmarks (default build/benchmarks/NAME)."""
+    p.add_argument("--binary", type=Path, default=harness.REPO / "build/benchmarks" / name,
+                   help=f"{what} (default: build/benchmarks/{name})")
+
+
+def require_program(path, build):
+    """Stops with what to build when the program at `path` is missing (`build`: the CMake options)."""
+    if not path.exists():
+        raise harness.RunFailed(f"{path} missing: build with {build}")
+
+
 def section_of(stem, name):
     """Decorator of a README section rendered as render(res, STEM.json, rows of STEM.csv); without
     those files the section says how to produce them (`benchmarks/run.py NAME`)."""

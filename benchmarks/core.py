@@ -16,15 +16,13 @@ import common  # noqa: E402
 
 def parser():
     p = harness.options(__doc__, out=common.RESULTS)
-    p.add_argument("--binary", type=Path, default=harness.REPO / "build/benchmarks/bench_core",
-                   help="the Google Benchmark binary (default: build/benchmarks/bench_core)")
+    common.program_option(p, "bench_core", "the Google Benchmark binary")
     p.add_argument("--repetitions", type=int, default=5, help="repetitions (default: 5)")
     return p
 
 
 def run(args):
-    if not args.binary.exists():
-        raise harness.RunFailed(f"{args.binary} missing: build with -DBUILD_BENCHMARKS=ON")
+    common.require_program(args.binary, "-DBUILD_BENCHMARKS=ON")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     harness.say("core", f"{args.binary.name}, {args.repetitions} repetitions ...")

@@ -1,7 +1,7 @@
 // exactCollision's friction over the whole parameter range: random wall
 // collisions (en, et, mu, vt/vn, tc/dt, limitForce) stepped by the physics
 // core at random start phases, against the continuous law solved
-// independently (collide::cappedLawExit). One CSV row per case: its worst
+// independently (collide::wallFrictionAgainstTheLaw). One CSV row per case: its worst
 // phase, in units of vt. The tests check fixed cases and a few hundred random
 // ones; this looks further.
 #include <CLI/CLI.hpp>
@@ -9,11 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
-#include "core/collision.h"
 #include "reference.h"
-
-using namespace viscoelastic;
 
 int main(int argc, char** argv)
 {
@@ -27,30 +25,21 @@ int main(int argc, char** argv)
 
     std::mt19937 g(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
-    const double mt = 2.0 / 7.0;  // the spring's mass per unit meff (a wall collision of a sphere)
     std::printf("case,en,et,mu,vt_over_vn,tc_over_dt,limitForce,law_exit,worst_err,worst_phase\n");
     for (int i = 0; i < cases; ++i) {
         // log-uniform where the range spans decades
         const double en = 0.05 + 0.93 * U(g), et = 0.1 + 0.88 * U(g), mu = 0.05 * std::pow(60.0, U(g));
         const double vt = 0.02 * std::pow(300.0, U(g)), ratio = 4.2 * std::pow(40.0 / 4.2, U(g));
         const bool limitForce = U(g) < 0.5;
-        const auto o = exactCollisionOscillators({1e-4, en, et, mu}, limitForce);
-        if (!o) {  // limitForce with an en a cut contact cannot restitute: drawn again
+        std::mt19937 gp(seed + i);
+        std::vector<double> starts;
+        for (int k = 0; k < phases; ++k) starts.push_back(1.0 - U(gp));
+        const auto r = collide::wallFrictionAgainstTheLaw({1e-4, en, et, mu}, vt, ratio, limitForce, starts);
+        if (!r) {  // limitForce with an en a cut contact cannot restitute: drawn again
             --i;
             continue;
         }
-        const double dt = 1e-4 / ratio;
-        const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
-        const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);  // as the model builds it
-        const double exit = collide::cappedLawExit(o->normal, o->tangential, limitForce, mu / mt, vt);
-        std::mt19937 gp(seed + i);
-        double worst = std::isnan(exit) ? exit : 0.0, worstPhase = 0.0;  // NaN: the reference did not finish
-        for (int k = 0; k < phases && !std::isnan(exit); ++k) {
-            const double phase = 1.0 - U(gp);
-            const FrictionalExit e = exactWallCollisionAtPhase(normal, tangential, phase, vt, mu, [&](double) { return mt; });
-            const double err = std::fabs(e.tangential - exit) / vt;
-            if (!(err <= worst)) worst = err, worstPhase = phase;
-        }
+        const double exit = r->exit, worst = r->worst, worstPhase = r->worstPhase;  // NaN: the law did not finish
         std::printf("%d,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.3e,%.17g\n", i, en, et, mu, vt, ratio, int(limitForce),
                     exit, worst, worstPhase);
         if ((i + 1) % 1000 == 0) std::fprintf(stderr, "friction_sweep: %d of %d cases\n", i + 1, cases), std::fflush(stdout);

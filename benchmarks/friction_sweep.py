@@ -20,8 +20,7 @@ LEVELS = (1e-9, 1e-6, 1e-3)
 
 def parser():
     p = harness.options(__doc__, out=common.RESULTS)
-    p.add_argument("--binary", type=Path, default=harness.REPO / "build/benchmarks/friction_sweep",
-                   help="the sweep program (default: build/benchmarks/friction_sweep)")
+    common.program_option(p, "friction_sweep", "the sweep program")
     p.add_argument("--cases", type=int, default=20000, help="random cases (default: %(default)s)")
     p.add_argument("--phases", type=int, default=256, help="random start phases per case (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="seed of the cases (default: %(default)s)")
@@ -29,8 +28,7 @@ def parser():
 
 
 def run(args):
-    if not args.binary.exists():
-        raise harness.RunFailed(f"{args.binary} missing: build with -DBUILD_BENCHMARKS=ON -DBUILD_TOOLS=ON")
+    common.require_program(args.binary, "-DBUILD_BENCHMARKS=ON -DBUILD_TOOLS=ON")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     harness.say("friction_sweep", f"{args.cases} cases x {args.phases} phases ...")

@@ -738,11 +738,14 @@ inline double excessRate(const Vec3& phi, double n, const Vec3& rate, double cap
 
 // Whether a function below zero at both ends of a span h (`f` <= 0, `rate`
 // its rate there) may reach zero inside: extrapolated from either end at its
-// rate there it would. Below both tangents, a hump that is concave (as near
-// its top) stays below zero.
+// rate there it would (reachesAhead from the start, reachesBack from the
+// end). Below both tangents, a hump that is concave (as near its top) stays
+// below zero.
+inline bool reachesAhead(double f0, double rate0, double h) { return f0 + std::max(rate0, 0.0) * h > 0.0; }
+inline bool reachesBack(double f1, double rate1, double h) { return f1 - std::min(rate1, 0.0) * h > 0.0; }
 inline bool mayPeak(double f0, double rate0, double f1, double rate1, double h)
 {
-    return f0 + std::max(rate0, 0.0) * h > 0.0 || f1 - std::min(rate1, 0.0) * h > 0.0;
+    return reachesAhead(f0, rate0, h) || reachesBack(f1, rate1, h);
 }
 
 namespace detail {
@@ -801,6 +804,15 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
     // sticking again met the cap at once: the slide only grazed the re-stick
     // condition, and goes on to where it really unloads
     bool grazing = false;
+    // Sliding on the cap in `dir` while the normal motion goes from `from` to
+    // `q`, span later (Fn of one sign): the contact point's rate falls by
+    // kappa |int Fn|, its displacement by kappa times the double integral
+    // u_n(from) span - (x(q) - x(from)) - pull span^2 / 2.
+    const auto slide = [&](const Motion& from, const Motion& q, double span) {
+        const double twice = std::fabs(from.u * span - (q.x - from.x) - 0.5 * src.pull * span * span);
+        r.displacement += m.u * span - src.kappa * twice * dir;
+        m.u -= src.kappa * std::fabs(from.u - q.u - src.pull * span) * dir;
+    };
     // (events end where under 1e-12 of the span is left: Fn's zero found
     // within round-off of the span's end otherwise leaves an interval of
     // round-off on which stick and slide alternate)
@@ -951,11 +963,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
             r.sliding = !restuck;
             grazing = false;
             if (to > t) {
-                const double span = to - t;
-                // the double integral of Fn: u_n(t) span - (x(to) - x(t)) - pull span^2 / 2
-                const double twice = std::fabs(from.u * span - (q.x - from.x) - 0.5 * src.pull * span * span);
-                r.displacement += m.u * span - src.kappa * twice * dir;
-                m.u -= src.kappa * impulse(q, to) * dir;
+                slide(from, q, to - t);
                 m.xi = ((to == zero ? 0.0 : capAt(src.force(q))) * dir - o.c * m.u) / o.k;
                 t = to;
             }
@@ -970,11 +978,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
         // last direction, so the step's force stays within the cap (a free
         // spring here gave 16 times the step's bound)
         for (double until = t < zero && zero < b ? zero : b; t < b; until = b) {
-            const Motion from = src.at(t), q = until == b ? mb : src.at(until);
-            const double span = until - t;
-            const double twice = std::fabs(from.u * span - (q.x - from.x) - 0.5 * src.pull * span * span);
-            r.displacement += m.u * span - src.kappa * twice * dir;
-            m.u -= src.kappa * std::fabs(from.u - q.u - src.pull * span) * dir;
+            slide(src.at(t), until == b ? mb : src.at(until), until - t);
             t = until;
         }
         m.xi = (capAt(fb) * dir - o.c * m.u) / o.k, r.stuck = false, r.sliding = true;
@@ -1085,12 +1089,12 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
             const double n1 = phi.norm();
             const double capRate1 = side * (normalLaw.rateStepX * normal.now.x + normalLaw.rateStepU * normal.now.u);
             const double rate1 = excessRate(phi, n1, combine(law.phiRateX, xi1, law.phiRateV, next), capRate1);
-            common = !(n1 - std::fabs(cap) - std::min(rate1, 0.0) * h > 0.0);
+            common = !reachesBack(n1 - std::fabs(cap), rate1, h);
             if (common) {
                 const Vec3 phi0 = combine(law.phiX, xi, law.phiV, vt);
                 const double n0 = phi0.norm(), capRate0 = side * normalLaw.o.forceRate(normal.now);
                 const double rate0 = excessRate(phi0, n0, combine(law.phiRateX, xi, law.phiRateV, vt), capRate0);
-                common = !(n0 - std::fabs(kappa * normal.forceNow) + std::max(rate0, 0.0) * h > 0.0) && phi0.dot(phi) >= 0.0;
+                common = !reachesAhead(n0 - std::fabs(kappa * normal.forceNow), rate0, h) && phi0.dot(phi) >= 0.0;
             }
         }
     }

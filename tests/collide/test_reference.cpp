@@ -164,26 +164,17 @@ TEST(ExactCollision, CappedFlowMatchesAnExactSolutionOfTheLaw)
     struct M { double en, et, mu; };
     const M materials[] = {{0.56, 0.46, 0.5}, {0.3, 0.8, 0.5}, {0.3, 0.8, 0.3}, {0.9, 0.2, 0.1},
                            {0.1, 0.95, 0.2}, {0.56, 0.3, 1e6}, {0.95, 0.95, 0.05}, {0.5, 0.9, 2.0}};
-    const double mt = 2.0 / 7.0;
+    std::vector<double> grid;
+    for (int k = 0; k < 32; ++k) grid.push_back((k + 0.5) / 32.0);
     int cases = 0;
     for (bool limitForce : {false, true})
     for (double ratio : {5.6, 7.3, 10.0, 20.0})
     for (const M& m : materials)
     for (double vt : {0.05, 0.2, 1.0, 4.0}) {
-        const auto o = exactCollisionOscillators({1e-4, m.en, m.et, m.mu}, limitForce);
-        if (!o) continue;  // en 0.1 with limitForce: below what a cut contact restitutes
-        const double dt = 1e-4 / ratio;
-        const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
-        const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);  // as the model builds it
-        const double exit = cappedLawExit(o->normal, o->tangential, limitForce, m.mu / mt, vt);
-        double worst = 0.0;
-        for (int k = 0; k < 32; ++k) {
-            const FrictionalExit e =
-                exactWallCollisionAtPhase(normal, tangential, (k + 0.5) / 32.0, vt, m.mu, [&](double) { return mt; });
-            worst = std::max(worst, std::fabs(e.tangential - exit) / vt);
-        }
-        EXPECT_LT(worst, 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt << " tc/dt "
-                               << ratio << " limitForce " << limitForce;
+        const auto r = wallFrictionAgainstTheLaw({1e-4, m.en, m.et, m.mu}, vt, ratio, limitForce, grid);
+        if (!r) continue;  // en 0.1 with limitForce: below what a cut contact restitutes
+        EXPECT_LT(r->worst, 1e-6) << "en " << m.en << " et " << m.et << " mu " << m.mu << " vt/vn " << vt << " tc/dt "
+                                  << ratio << " limitForce " << limitForce;
         ++cases;
     }
     std::printf("%d cases\n", cases);
@@ -192,26 +183,18 @@ TEST(ExactCollision, CappedFlowMatchesAnExactSolutionOfTheLaw)
 namespace {
 
 // The worst of `phases` random start phases (seeded) of a wall collision
-// stepped by the core, against cappedLawExit, in units of vt.
+// stepped by the core, against cappedLawExit, in units of vt (NaN where the
+// law's solution does not finish: fails the caller's bound; -1 where the law
+// has no oscillators).
 double worstAgainstTheLaw(double en, double et, double mu, double vt, double ratio, bool limitForce, int phases,
                           unsigned seed)
 {
-    const double mt = 2.0 / 7.0;
-    const auto o = exactCollisionOscillators({1e-4, en, et, mu}, limitForce);
-    if (!o) return -1.0;
-    const double dt = 1e-4 / ratio;
-    const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
-    const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);
-    const double exit = cappedLawExit(o->normal, o->tangential, limitForce, mu / mt, vt);
-    if (std::isnan(exit)) return exit;  // the reference did not finish: fails the caller's bound
     std::mt19937 g(seed);
     std::uniform_real_distribution<double> phase(0.0, 1.0);
-    double worst = 0.0;
-    for (int k = 0; k < phases; ++k) {
-        const FrictionalExit e = exactWallCollisionAtPhase(normal, tangential, 1.0 - phase(g), vt, mu, [&](double) { return mt; });
-        worst = std::max(worst, std::fabs(e.tangential - exit) / vt);
-    }
-    return worst;
+    std::vector<double> starts;
+    for (int k = 0; k < phases; ++k) starts.push_back(1.0 - phase(g));
+    const auto r = wallFrictionAgainstTheLaw({1e-4, en, et, mu}, vt, ratio, limitForce, starts);
+    return r ? r->worst : -1.0;
 }
 
 }  // namespace

@@ -463,4 +463,23 @@ double cappedLawExit(const FreeOscillator& n, const FreeOscillator& s, bool limi
     return u;
 }
 
+std::optional<AgainstTheLaw> wallFrictionAgainstTheLaw(const ContactParameters& p, double vt, double tcOverDt,
+                                                       bool limitForce, const std::vector<double>& phases)
+{
+    const double mt = 2.0 / 7.0;  // the spring's mass per unit meff (a sphere on a wall)
+    const auto o = exactCollisionOscillators(p, limitForce);
+    if (!o) return std::nullopt;
+    const double dt = p.tc / tcOverDt;
+    const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, limitForce);
+    const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);  // as the model builds it
+    AgainstTheLaw r{cappedLawExit(o->normal, o->tangential, limitForce, p.mu / mt, vt), 0.0, 0.0};
+    if (std::isnan(r.exit)) return AgainstTheLaw{r.exit, r.exit, 0.0};
+    for (double phase : phases) {
+        const FrictionalExit e = exactWallCollisionAtPhase(normal, tangential, phase, vt, p.mu, [&](double) { return mt; });
+        const double err = std::fabs(e.tangential - r.exit) / vt;
+        if (!(err <= r.worst)) r.worst = err, r.worstPhase = phase;
+    }
+    return r;
+}
+
 }  // namespace collide

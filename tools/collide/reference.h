@@ -127,8 +127,22 @@ Reference reference(const Case& c);
 // change of regime and bisecting it to 1e-17 tc. Normal per unit meff = 1,
 // the spring per unit m_t (kappa: the cap per unit Fn). Returns the contact
 // point's rate after the contact; NaN where stick and slide alternate
-// without end (more than 1,000 events: seen once in 20,000 random cases).
+// without end (more than 1,000 events: 3 of benchmarks/friction_sweep's
+// 20,000 random cases).
 double cappedLawExit(const viscoelastic::FreeOscillator& n, const viscoelastic::FreeOscillator& s, bool limitForce,
                      double kappa, double vt0, int scan = 200000);
+
+// A wall collision (approach 1 m/s, the contact point at vt along x) stepped
+// by exactCollision's core at each start phase, the tangential law built as
+// the model builds it, against cappedLawExit: the law's exit rate and the
+// worst deviation from it, in units of vt, and its phase. Empty where the law
+// has no oscillators (limitForce with an en a cut contact cannot restitute);
+// NaN exit and worst where cappedLawExit does not finish.
+struct AgainstTheLaw {
+    double exit, worst, worstPhase;
+};
+std::optional<AgainstTheLaw> wallFrictionAgainstTheLaw(const viscoelastic::ContactParameters& p, double vt,
+                                                       double tcOverDt, bool limitForce,
+                                                       const std::vector<double>& phases);
 
 }  // namespace collide
