@@ -95,6 +95,28 @@ class Report(unittest.TestCase):
         self.assertGreaterEqual(t, 4.95)
         self.assertLess(float(verdict["Hc_se_m"]), 0.03)
 
+    def test_time_with_the_machine_to_itself(self):
+        # the benchmark's median rate over its `fast` rounds, only at the study's step
+        with tempfile.TemporaryDirectory() as d:
+            stem = Path(d) / "bench"
+            with open(f"{stem}.csv", "w", newline="") as f:
+                w = csv.DictWriter(f, ["variant", "round", "particle_steps_per_s"])
+                w.writeheader()
+                for k, (variant, rate) in enumerate([("fast", 9e6), ("stock fast", 1e9), ("fast", 7e6), ("fast", 8e6)]):
+                    w.writerow({"variant": variant, "round": k, "particle_steps_per_s": rate})
+            Path(f"{stem}.json").write_text('{"dt_s": 2e-05}')
+            self.assertEqual(report.alone_rate(2e-5, stem), 8e6)
+            self.assertTrue(report.alone_rate(1e-5, stem) != report.alone_rate(1e-5, stem))
+            self.assertTrue(report.alone_rate(2e-5, Path(d) / "none") != report.alone_rate(2e-5, Path(d) / "none"))
+        # the table's two columns and their medians: as run, half the CPU time; alone, as given
+        verdict = {"Hc_m": -0.1, "Hc_se_m": 1e-5, "angle_deg": 30.0, "angle_se_deg": 0.01}
+        reached = [(7, 3, 10.0, 2.0, verdict, 50.0), (14, 3, 8.0, 1.0, verdict, 40.0), (21, 3, 6.0, 3.0, verdict, 20.0),
+                   (28, 3, float("nan"), float("nan"), None, float("nan"))]
+        text = report.markdown("s", [row(7, 0.05, 0.001)], reached)
+        self.assertIn("| 7 | 3 | 10.00 | 2.0 | 60 | 50 | -100.000 ± 0.010 | 30.000 ± 0.010 |", text)
+        self.assertIn("- 3 batches: median over 3 speeds 60 minutes on 2 cores as run, 40 with the machine to itself "
+                      "(1 more never reached the target", text)
+
     def test_no_table_no_report(self):
         with tempfile.TemporaryDirectory() as d:
             self.assertEqual(report.write("none", d), [])

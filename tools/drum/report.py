@@ -9,8 +9,11 @@ angle of repose, the drum force and the cost. steady.py rewrites both after each
 The time to the target: the stop rule (`drum_metrics steady`, the study's targets) replayed on
 each finished speed's committed series, cut after each snapshot in turn: when would the averages
 first have met the target standard errors with 3 batches, and with the study's own minimum? The
-cost to there is the speed's CPU time per simulated second (both ranks busy throughout, so half of
-it is the time on 2 cores).
+cost to there, as run, is the speed's CPU time per simulated second (both ranks busy throughout, so
+half of it is the time on 2 cores). Loop times are wall times: other jobs on a shared machine
+lengthen them. So the time to there is also given for the machine to itself: its particle-steps
+at the rate benchmarks/full_scene.py measured for the study's settings (`fast`, median over its
+rounds, benchmarks/results/full_scene_long.csv), where that benchmark ran at the study's step.
 
   tools/drum/report.py --name study_thesis
 """
@@ -101,9 +104,34 @@ def time_to_target(series, run, rpm, dt, min_batches):
     return float("nan"), None
 
 
-def targets_reached(docs, name, rows, batches=(3,)):
+BENCHMARK = harness.REPO / "benchmarks" / "results" / "full_scene_long"
+
+
+def alone_rate(dt, benchmark=BENCHMARK):
+    """Particle-steps per second of the study's settings (`fast`) on 2 ranks with the machine to
+    itself: the median over the benchmark's rounds; nan without the benchmark or at another step."""
+    csv_path, json_path = Path(f"{benchmark}.csv"), Path(f"{benchmark}.json")
+    if not csv_path.exists() or not json_path.exists():
+        return float("nan")
+    if not math.isclose(float(harness.read_json(json_path)["dt_s"]), dt, rel_tol=1e-9):
+        return float("nan")
+    rates = sorted(float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast")
+    if not rates:
+        return float("nan")
+    m = len(rates)
+    return rates[m // 2] if m % 2 else 0.5 * (rates[m // 2 - 1] + rates[m // 2])
+
+
+def median(values):
+    v = sorted(values)
+    m = len(v)
+    return v[m // 2] if m % 2 else 0.5 * (v[m // 2 - 1] + v[m // 2])
+
+
+def targets_reached(docs, name, rows, batches=(3,), benchmark=BENCHMARK):
     """Per finished speed with its series committed: [(rpm, min_batches, simulated s, CPU hours,
-    verdict row)] for `batches` and the study's own minimum."""
+    verdict row, minutes on 2 cores with the machine to itself)] for `batches` and the study's own
+    minimum."""
     out = []
     for r in rows:
         folder = docs / name / f"{r['rpm']:g}rpm"
@@ -112,9 +140,11 @@ def targets_reached(docs, name, rows, batches=(3,)):
         series = harness.read_csv(folder / "series_metrics.csv")
         run = harness.read_json(folder / "run.json")
         per_second = run["cpu_s"] / 3600.0 / run["simulated_s"]
+        dt = float(r["dt_s"])
+        rate = alone_rate(dt, benchmark)
         for b in sorted({*batches, run["settings"]["min_batches"]}):
-            t, verdict = time_to_target(series, run, r["rpm"], float(r["dt_s"]), b)
-            out.append((int(r["rpm"]), b, t, t * per_second, verdict))
+            t, verdict = time_to_target(series, run, r["rpm"], dt, b)
+            out.append((int(r["rpm"]), b, t, t * per_second, verdict, t / dt * run["beads"] / rate / 60.0))
     return out
 
 
@@ -163,25 +193,31 @@ def markdown(name, rows, reached=()):
                   "The stop rule replayed on each speed's committed series, cut after each snapshot: the first "
                   "snapshot where the averages met the target standard errors with at least this many batches "
                   "(whole revolutions after the steady start), counted from the speed's start state (the first "
-                  "speed's: the study's first state). Minutes on 2 cores: half the CPU time (both ranks busy throughout). The averages "
+                  "speed's: the study's first state). Minutes on 2 cores, as run: half the CPU time (both ranks "
+                  "busy throughout; wall times, which other jobs on the machine lengthen). With the machine to "
+                  "itself: the particle-steps to there at the rate `benchmarks/full_scene.py` measured for the "
+                  "study's settings (`fast`, median over its rounds). The averages "
                   "there beside the speed's final ones (the table above) show what the shorter run would have "
                   "reported. A standard error from 3 batches has 2 degrees of freedom (from 5: 4), and the "
                   "replay stops at the first snapshot where it is small enough, so the shorter runs' error "
                   "bars are the less trustworthy.", "",
-                  "| rpm | batches | simulated [s] | CPU hours | minutes on 2 cores | Hc [mm] | angle [deg] |",
-                  "|---|---|---|---|---|---|---|"]
-        for rpm, b, t, cpu, v in reached:
+                  "| rpm | batches | simulated [s] | CPU hours | minutes on 2 cores, as run | minutes on 2 cores, "
+                  "machine to itself | Hc [mm] | angle [deg] |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for rpm, b, t, cpu, v, alone in reached:
             avg = (f"{1e3 * float(v['Hc_m']):.3f} ± {1e3 * float(v['Hc_se_m']):.3f} | "
                    f"{float(v['angle_deg']):.3f} ± {float(v['angle_se_deg']):.3f}") if v else "– | –"
-            lines.append(f"| {rpm} | {b} | {t:.2f} | {cpu:.1f} | {30.0 * cpu:.0f} | {avg} |")
+            lines.append(f"| {rpm} | {b} | {t:.2f} | {cpu:.1f} | {30.0 * cpu:.0f} | {alone:.0f} | {avg} |")
         lines.append("")
-        for b in sorted({b for _, b, _, _, _ in reached}):
-            minutes = sorted(30.0 * cpu for _, bb, _, cpu, _ in reached if bb == b and math.isfinite(cpu))
-            missed = sum(1 for _, bb, _, cpu, _ in reached if bb == b and not math.isfinite(cpu))
-            if minutes:
-                m = len(minutes)
-                median = minutes[m // 2] if m % 2 else 0.5 * (minutes[m // 2 - 1] + minutes[m // 2])
-                lines.append(f"- {b} batches: median over {m} speeds {median:.0f} minutes on 2 cores"
+        for b in sorted({r[1] for r in reached}):
+            mine = [r for r in reached if r[1] == b]
+            finished = [r for r in mine if math.isfinite(r[3])]
+            missed = len(mine) - len(finished)
+            if finished:
+                alone = [r[5] for r in finished if math.isfinite(r[5])]
+                lines.append(f"- {b} batches: median over {len(finished)} speeds {median([30.0 * r[3] for r in finished]):.0f} "
+                             "minutes on 2 cores as run"
+                             + (f", {median(alone):.0f} with the machine to itself" if len(alone) == len(finished) else "")
                              + (f" ({missed} more never reached the target: the median without them is low)"
                                 if missed else "") + ".")
     return "\n".join(lines) + "\n"
