@@ -1,0 +1,81 @@
+"""The slip test's reading (tools/drum/slip.py) on studies with known answers: a series that drops
+between 27 and 28 rpm and one that rises throughout, batch means on values whose standard error
+is known, and a start row taken from a study table."""
+
+import csv
+import math
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+import slip  # noqa: E402
+
+COLUMNS = ["time_s", "Hh_m", "Hc_m", "angle_deg", "bed_turn_1", "wall_slip_1"]
+
+
+def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
+    """A speed's series: a transient in its first half (which the window leaves out), then Hc
+    alternating +-0.1 mm about `hc`: batch means of 5 over the last 15 snapshots are exact."""
+    folder = docs / name / f"{rpm}rpm"
+    folder.mkdir(parents=True)
+    with open(folder / "series_metrics.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, COLUMNS)
+        w.writeheader()
+        for k in range(n):
+            wobble = 1e-4 * (1 if k % 2 else -1)
+            transient = 5e-3 if k < n // 2 else 0.0
+            w.writerow({"time_s": 0.05 * k, "Hh_m": 0.09 + hc, "Hc_m": hc + wobble + transient, "angle_deg": 30.0,
+                        "bed_turn_1": turn, "wall_slip_1": 0.002})
+
+
+class Slip(unittest.TestCase):
+    def test_batch_means(self):
+        mean, se = slip.batch_means([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 3)  # batch means 1.5, 3.5, 5.5
+        self.assertAlmostEqual(mean, 3.5)
+        self.assertAlmostEqual(se, 2.0 / math.sqrt(3))
+        mean, se = slip.batch_means([9.0, 1.0, 1.0, 1.0], 3)  # the first value left out
+        self.assertEqual((mean, se), (1.0, 0.0))
+        self.assertTrue(math.isnan(slip.batch_means([1.0], 3)[1]))
+
+    def test_a_drop_at_28_and_a_steady_rise(self):
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            for rpm in range(22, 29):
+                rise = -0.0970 + 0.0005 * (rpm - 22)
+                write_speed(docs, "rises", rpm, rise)
+                # the same, but the bed slips at 28 rpm: 3 mm down, its turn falls
+                write_speed(docs, "slips", rpm, rise - (0.003 if rpm == 28 else 0.0), 0.9 if rpm == 28 else 1.0)
+            with open(docs / "chain.csv", "w", newline="") as f:
+                w = csv.DictWriter(f, ["rpm", *COLUMNS[1:], *(slip.se_column(c) for c in COLUMNS[1:])])
+                w.writeheader()
+                w.writerow({"rpm": 21, "Hh_m": 0.087, "Hc_m": -0.0975, "angle_deg": 30.0, "bed_turn_1": 1.0,
+                            "wall_slip_1": 0.002, **{slip.se_column(c): 1e-5 for c in COLUMNS[1:]}})
+            out = docs / "slip"
+            self.assertEqual(slip.main(["--study", "rises", "rises", "--study", "slips", "slips", "--start", "chain:21",
+                                        "--start", "chain:21", "--docs", d, "--out", str(out)]), 0)
+            text = out.with_suffix(".md").read_text()
+            self.assertIn("## rises\n\n**27 → 28 rpm: Hc rises** (+0.50 mm", text)
+            self.assertIn("## slips\n\n**27 → 28 rpm: Hc drops** (-2.50 mm", text)
+            # the windows leave the transient out: Hc within round-off of the set value
+            speeds = slip.study_speeds(docs, "slips", 0.5, 3)
+            self.assertEqual([s[0] for s in speeds], list(range(22, 29)))
+            self.assertAlmostEqual(speeds[-1][1]["Hc_m"][0], -0.0970 + 0.003 - 0.003, delta=1e-4 / 3 + 1e-12)
+            self.assertLess(speeds[-1][1]["bed_turn_1"][0], 0.95)
+            # the start row comes first, from the table
+            self.assertIn("| 21 | steady | -97.50 ± 0.01 |", text)
+            rows = list(csv.DictReader(open(out.with_suffix(".csv"))))
+            self.assertEqual(len(rows), 16)
+            self.assertGreater(out.with_suffix(".png").stat().st_size, 10000)
+
+    def test_a_missing_start_speed_is_named(self):
+        with tempfile.TemporaryDirectory() as d:
+            write_speed(Path(d), "s", 22, -0.097)
+            self.assertEqual(slip.main(["--study", "s", "s", "--start", "nowhere:21", "--docs", d,
+                                        "--out", str(Path(d) / "x")]), 1)
+
+
+if __name__ == "__main__":
+    unittest.main()

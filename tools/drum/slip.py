@@ -1,0 +1,193 @@
+#!/usr/bin/python3
+"""The slip test of Fig. 3.5-3.6: does the bed drop between 27 and 28 rpm?
+
+The thesis raised the drum's speed incrementally from 21 to 28 rpm over 1e7 timesteps (about
+12 s at its step) and saw the centre of mass drop between 27 and 28 rpm, which it put down to
+the beads reaching the Coulomb limit on the drum. Here the same steps are runs of
+tools/drum/steady.py with a fixed length per speed (`--cap` = `--segment`), each from the end
+state of the speed before (so the study's folders hold one series per speed), once per set of
+conventions. This script reads those series and, per speed, averages the last --window of it
+(after the step's transient) with a standard error by batch means over --batches contiguous
+batches; then, step by step, the change of each metric against twice the combined standard error
+(tools/drum/report.py's rule). A slip shows as a drop of Hc (and of the head) at one step while
+the other steps rise, with the bed's turn (`bed_turn`) falling below 1 and the drum contacts'
+slip (`wall_slip`) rising.
+
+  tools/drum/slip.py --study slip_thesis "thesis table (bead-drum mu 0.95)" \\
+      --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" \\
+      --start study_thesis:21 --out docs/drum/slip_test
+"""
+
+import argparse
+import math
+import statistics
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import harness  # noqa: E402
+from harness import charts  # noqa: E402
+import report  # noqa: E402
+
+# (label, column, scale, unit, digits) of the metrics compared
+METRICS = [("Hc", "Hc_m", 1e3, "mm", 2), ("Hh", "Hh_m", 1e3, "mm", 1), ("angle", "angle_deg", 1.0, "deg", 2),
+           ("bed turn", "bed_turn_1", 1.0, "", 4), ("wall slip", "wall_slip_1", 1.0, "", 4)]
+
+
+def se_column(col):
+    """The standard error's column of a study table (docs/drum/NAME.csv): Hc_m -> Hc_se_m."""
+    head, unit = col.rsplit("_", 1)
+    return f"{head}_se_{unit}"
+
+
+def batch_means(values, batches):
+    """(mean, standard error) of `values` by batch means over `batches` contiguous batches of
+    equal length (the first len % batches values left out); nan error with fewer than 2."""
+    n = len(values) // batches
+    if batches < 2 or n < 1:
+        return (statistics.fmean(values) if values else float("nan")), float("nan")
+    kept = values[len(values) - n * batches:]
+    means = [statistics.fmean(kept[k * n:(k + 1) * n]) for k in range(batches)]
+    return statistics.fmean(means), statistics.stdev(means) / math.sqrt(batches)
+
+
+def window_average(series, window, batches):
+    """{column: (mean, se)} over the last `window` (a fraction) of a speed's series."""
+    last = series[len(series) - max(1, round(window * len(series))):]
+    return {col: batch_means([float(r[col]) for r in last], batches) for _, col, _, _, _ in METRICS}
+
+
+def study_speeds(docs, name, window, batches):
+    """[(rpm, {column: (mean, se)}, seconds)] of a study's speeds that have a series, by speed."""
+    out = []
+    for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
+        path = folder / "series_metrics.csv"
+        if path.exists():
+            series = harness.read_csv(path)
+            if len(series) > 1:
+                seconds = float(series[-1]["time_s"]) - float(series[0]["time_s"])
+                out.append((float(folder.name[:-3]), window_average(series, window, batches), seconds))
+    return out
+
+
+def start_row(docs, spec):
+    """--start NAME:RPM: that speed's steady averages from docs/drum/NAME.csv as the first point."""
+    name, rpm = spec.split(":")
+    table = docs / f"{name}.csv"
+    rows = [r for r in harness.read_csv(table) if float(r["rpm"]) == float(rpm)] if table.exists() else []
+    if not rows:
+        raise harness.RunFailed(f"--start {spec}: no {rpm} rpm row in {table}")
+    r = rows[0]
+    return float(rpm), {col: (float(r[col]), float(r[se_column(col)])) for _, col, _, _, _ in METRICS}, float("nan")
+
+
+def steps(speeds):
+    """[(from rpm, to rpm, label, verdict, difference, 2 sigma)] between consecutive speeds."""
+    out = []
+    for (a, ma, _), (b, mb, _) in zip(speeds, speeds[1:]):
+        for label, col, scale, _, _ in METRICS:
+            (xa, sa), (xb, sb) = ma[col], mb[col]
+            out.append((a, b, label, report.change(xa, sa, xb, sb), (xb - xa) * scale, 2.0 * math.hypot(sa, sb) * scale))
+    return out
+
+
+def answer(step_rows, a=27.0, b=28.0):
+    """What the a -> b step of Hc says, with its numbers; None without that step."""
+    for x, y, label, verdict, diff, two_sigma in step_rows:
+        if (x, y, label) == (a, b, "Hc"):
+            return verdict, diff, two_sigma
+    return None
+
+
+def markdown(studies, window, batches, command):
+    lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
+             f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
+             f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
+             "where it exceeds twice the combined standard error. The first row of a study may be a steady "
+             "speed it started from (its averages over whole revolutions).", ""]
+    for label, speeds in studies:
+        rows = steps(speeds)
+        got = answer(rows)
+        lines += [f"## {label}", ""]
+        if got:
+            verdict, diff, two_sigma = got
+            lines += [f"**27 → 28 rpm: Hc {verdict}** ({diff:+.2f} mm against 2σ = {two_sigma:.2f} mm).", ""]
+        else:
+            lines += ["27 → 28 rpm: not run yet.", ""]
+        lines += ["| rpm | run [s] | " + " | ".join(f"{m[0]}{' [' + m[3] + ']' if m[3] else ''}" for m in METRICS) + " |",
+                  "|---|---|" + "---|" * len(METRICS)]
+        for rpm, avg, seconds in speeds:
+            cells = []
+            for _, col, scale, _, digits in METRICS:
+                v, e = avg[col]
+                cells.append(f"{v * scale:.{digits}f} ± {e * scale:.{digits}f}" if math.isfinite(e) else f"{v * scale:.{digits}f}")
+            lines.append(f"| {rpm:g} | {'steady' if not math.isfinite(seconds) else f'{seconds:.2f}'} | " + " | ".join(cells) + " |")
+        lines += ["", "| step [rpm] | " + " | ".join(m[0] for m in METRICS) + " |", "|---|" + "---|" * len(METRICS)]
+        for k in range(0, len(rows), len(METRICS)):
+            chunk = rows[k:k + len(METRICS)]
+            lines.append(f"| {chunk[0][0]:g} → {chunk[0][1]:g} | "
+                         + " | ".join(f"{v} ({d:+.3g})" for _, _, _, v, d, _ in chunk) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def chart(studies, path):
+    fig, axes = charts.figure(1, 2, title="slip test: speed raised step by step", size=(5.5, 4.2))
+    for label, speeds in studies:
+        rpm = [s[0] for s in speeds]
+        for ax, col, scale in ((axes[0], "Hc_m", 1e3), (axes[1], "bed_turn_1", 1.0)):
+            ax.errorbar(rpm, [s[1][col][0] * scale for s in speeds],
+                        yerr=[s[1][col][1] * scale if math.isfinite(s[1][col][1]) else 0.0 for s in speeds],
+                        marker="o", capsize=3, label=label)
+    axes[0].set_ylabel("centre of mass Hc [mm]")
+    axes[1].set_ylabel("bed turn (1: carried by the drum)")
+    for ax in axes:
+        ax.set_xlabel("drum speed [rpm]")
+        ax.legend(fontsize=7)
+    return charts.save(fig, path)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--study", nargs=2, action="append", metavar=("NAME", "LABEL"), required=True,
+                   help="a steady.py study (docs/drum/NAME/<rpm>rpm/series_metrics.csv) and its label")
+    p.add_argument("--start", action="append", default=[], metavar="NAME:RPM",
+                   help="per --study, in order: the steady speed it started from, as its first point ('-': none)")
+    p.add_argument("--window", type=float, default=0.5, help="the last fraction of each run averaged (default: %(default)s)")
+    p.add_argument("--batches", type=int, default=3, help="batches for the standard error (default: %(default)s)")
+    p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"), help="(default: docs/drum)")
+    p.add_argument("--out", default=str(harness.REPO / "docs" / "drum" / "slip_test"),
+                   help="OUT.md, OUT.csv, OUT.png (default: docs/drum/slip_test)")
+    a = p.parse_args(argv)
+    if not (0.0 < a.window <= 1.0) or a.batches < 2:
+        p.error(f"--window {a.window} --batches {a.batches}: need 0 < window <= 1 and batches >= 2")
+    docs = Path(a.docs)
+    starts = a.start + ["-"] * (len(a.study) - len(a.start))
+    try:
+        studies = []
+        for (name, label), start in zip(a.study, starts):
+            speeds = study_speeds(docs, name, a.window, a.batches)
+            studies.append((label, ([start_row(docs, start)] if start != "-" else []) + speeds))
+    except harness.RunFailed as e:
+        harness.say("slip", f"ERROR: {e}")
+        return 1
+    out = Path(a.out)
+    command = "tools/drum/slip.py " + " ".join(f"--study {n} '{l}'" for n, l in a.study) + "".join(
+        f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches}"
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, command))
+    rows = []
+    for label, speeds in studies:
+        for rpm, avg, seconds in speeds:
+            row = {"study": label, "rpm": rpm, "run_s": seconds}
+            for _, col, _, _, _ in METRICS:
+                row[col], row[se_column(col)] = avg[col]
+            rows.append(row)
+    harness.write_csv(out.with_suffix(".csv"), rows)
+    chart(studies, out.with_suffix(".png"))
+    harness.say("slip", f"wrote {out.with_suffix('.md')}, .csv, .png")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
