@@ -1,9 +1,11 @@
 """The slip test's reading (tools/drum/slip.py) on studies with known answers: a series that drops
 between 27 and 28 rpm and one that rises throughout, batch means on values whose standard error
-is known, and a start row taken from a study table."""
+is known, a start row taken from a study table, and the step test's false alarms and power on
+windows of white noise."""
 
 import csv
 import math
+import random
 import sys
 import tempfile
 import unittest
@@ -13,7 +15,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 import slip  # noqa: E402
 
-COLUMNS = ["time_s", "Hh_m", "Hc_m", "angle_deg", "bed_turn_1", "wall_slip_1"]
+COLUMNS = ["time_s", "Hh_m", "Hc_m", "angle_deg", "bed_turn_1", "wall_roll_1", "wall_slip_1"]
 
 
 def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
@@ -28,7 +30,7 @@ def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
             wobble = 1e-4 * (1 if k % 2 else -1)
             transient = 5e-3 if k < n // 2 else 0.0
             w.writerow({"time_s": 0.05 * k, "Hh_m": 0.09 + hc, "Hc_m": hc + wobble + transient, "angle_deg": 30.0,
-                        "bed_turn_1": turn, "wall_slip_1": 0.002})
+                        "bed_turn_1": turn, "wall_roll_1": 0.02, "wall_slip_1": 0.002})
 
 
 class Slip(unittest.TestCase):
@@ -49,26 +51,53 @@ class Slip(unittest.TestCase):
                 # the same, but the bed slips at 28 rpm: 3 mm down, its turn falls
                 write_speed(docs, "slips", rpm, rise - (0.003 if rpm == 28 else 0.0), 0.9 if rpm == 28 else 1.0)
             with open(docs / "chain.csv", "w", newline="") as f:
-                w = csv.DictWriter(f, ["rpm", *COLUMNS[1:], *(slip.se_column(c) for c in COLUMNS[1:])])
+                w = csv.DictWriter(f, ["rpm", "batches", *COLUMNS[1:], *(slip.se_column(c) for c in COLUMNS[1:])])
                 w.writeheader()
-                w.writerow({"rpm": 21, "Hh_m": 0.087, "Hc_m": -0.0975, "angle_deg": 30.0, "bed_turn_1": 1.0,
-                            "wall_slip_1": 0.002, **{slip.se_column(c): 1e-5 for c in COLUMNS[1:]}})
+                w.writerow({"rpm": 21, "batches": 5, "Hh_m": 0.087, "Hc_m": -0.0975, "angle_deg": 30.0, "bed_turn_1": 1.0,
+                            "wall_roll_1": 0.02, "wall_slip_1": 0.002, **{slip.se_column(c): 1e-5 for c in COLUMNS[1:]}})
             out = docs / "slip"
             self.assertEqual(slip.main(["--study", "rises", "rises", "--study", "slips", "slips", "--start", "chain:21",
                                         "--start", "chain:21", "--docs", d, "--out", str(out)]), 0)
             text = out.with_suffix(".md").read_text()
             self.assertIn("## rises\n\n**27 → 28 rpm: Hc rises** (+0.50 mm", text)
             self.assertIn("## slips\n\n**27 → 28 rpm: Hc drops** (-2.50 mm", text)
+            self.assertIn("First drop of Hc along the steps: 27 → 28 rpm", text)
+            self.assertEqual(text.count("First drop"), 1)
             # the windows leave the transient out: Hc within round-off of the set value
             speeds = slip.study_speeds(docs, "slips", 0.5, 3)
             self.assertEqual([s[0] for s in speeds], list(range(22, 29)))
             self.assertAlmostEqual(speeds[-1][1]["Hc_m"][0], -0.0970 + 0.003 - 0.003, delta=1e-4 / 3 + 1e-12)
             self.assertLess(speeds[-1][1]["bed_turn_1"][0], 0.95)
             # the start row comes first, from the table
-            self.assertIn("| 21 | steady | -97.50 ± 0.01 |", text)
+            self.assertIn("| 21 | steady start | -97.50 ± 0.01 |", text)
             rows = list(csv.DictReader(open(out.with_suffix(".csv"))))
             self.assertEqual(len(rows), 16)
             self.assertGreater(out.with_suffix(".png").stat().st_size, 10000)
+
+    def test_false_alarms_and_power_of_a_step(self):
+        # two windows of one state (white noise, 30 snapshots, the last 15 in 3 batches): the
+        # t-test at 0.05 calls at most about 5 % of them a change (binomial sd 0.5 % over 2000 pairs; a
+        # "twice the combined error" rule calls about 12 %); a true step of 5 combined standard
+        # errors of the batch means is caught in most pairs
+        rng = random.Random(7)
+
+        def window(mean):
+            rows = [{c: 0.0 for c in COLUMNS} for _ in range(30)]
+            for r in rows:
+                r["Hc_m"] = mean + rng.gauss(0.0, 1.0)
+            return slip.window_average(rows, 0.5, 3)["Hc_m"]
+
+        def called(shift, pairs=2000):
+            n = 0
+            for _ in range(pairs):
+                (xa, sa), (xb, sb) = window(0.0), window(shift)
+                n += slip.change(xa, sa, 3, xb, sb, 3, 0.05)[0] != "no change"
+            return n / pairs
+
+        self.assertLess(called(0.0), 0.065)
+        self.assertGreater(called(0.0), 0.02)  # (Welch is slightly conservative: 3.6-5 % seen)
+        # batch means of 5 iid values: sd 1/sqrt(5); their means' se 1/sqrt(15); combined sqrt(2/15)
+        self.assertGreater(called(5.0 * math.sqrt(2.0 / 15.0), 500), 0.75)
 
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:

@@ -3,6 +3,7 @@ between speeds rise, drop or do not change beyond twice the combined standard er
 findings beside them, the cost beside Table 3.2, and the chart."""
 
 import csv
+import math
 import random
 import sys
 import tempfile
@@ -105,9 +106,14 @@ class Report(unittest.TestCase):
                 for k, (variant, rate) in enumerate([("fast", 9e6), ("stock fast", 1e9), ("fast", 7e6), ("fast", 8e6)]):
                     w.writerow({"variant": variant, "round": k, "particle_steps_per_s": rate})
             Path(f"{stem}.json").write_text('{"dt_s": 2e-05}')
-            self.assertEqual(report.alone_rate(2e-5, stem), 8e6)
-            self.assertTrue(report.alone_rate(1e-5, stem) != report.alone_rate(1e-5, stem))
-            self.assertTrue(report.alone_rate(2e-5, Path(d) / "none") != report.alone_rate(2e-5, Path(d) / "none"))
+            study = {"dt": "2e-5", "exact": "on", "skin": "0.3", "wall": "cylinder"}
+            self.assertEqual(report.alone_rate(2e-5, study, stem), 8e6)
+            self.assertEqual(report.alone_rate(2e-5, None, stem), 8e6)
+            # another step, other settings, no benchmark: no rate
+            self.assertTrue(math.isnan(report.alone_rate(1e-5, study, stem)))
+            self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "wall": "surface"}, stem)))
+            self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "conventions": "yade"}, stem)))
+            self.assertTrue(math.isnan(report.alone_rate(2e-5, study, Path(d) / "none")))
         # the table's two columns and their medians: as run, half the CPU time; alone, as given
         verdict = {"Hc_m": -0.1, "Hc_se_m": 1e-5, "angle_deg": 30.0, "angle_se_deg": 0.01}
         reached = [(7, 3, 10.0, 2.0, verdict, 50.0), (14, 3, 8.0, 1.0, verdict, 40.0), (21, 3, 6.0, 3.0, verdict, 20.0),

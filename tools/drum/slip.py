@@ -8,10 +8,11 @@ tools/drum/steady.py with a fixed length per speed (`--cap` = `--segment`), each
 state of the speed before (so the study's folders hold one series per speed), once per set of
 conventions. This script reads those series and, per speed, averages the last --window of it
 (after the step's transient) with a standard error by batch means over --batches contiguous
-batches; then, step by step, the change of each metric against twice the combined standard error
-(tools/drum/report.py's rule). A slip shows as a drop of Hc (and of the head) at one step while
-the other steps rise, with the bed's turn (`bed_turn`) falling below 1 and the drum contacts'
-slip (`wall_slip`) rising.
+batches; then, step by step, each metric's change in a two-sided Welch t-test at --alpha per
+comparison (batch means from n batches have n - 1 degrees of freedom; with 3 batches a "twice
+the combined error" rule would call 12 % of unchanged steps a change). A slip shows as a drop of
+Hc (and of the head) at one step while the other steps rise, with the bed's turn (`bed_turn`)
+falling below 1 and the drum contacts' rolling (`wall_roll`) and slip (`wall_slip`) rising.
 
   tools/drum/slip.py --study slip_thesis "thesis table (bead-drum mu 0.95)" \\
       --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" \\
@@ -28,11 +29,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
-import report  # noqa: E402
+from histories import welch_dof  # noqa: E402
+from scipy import stats  # noqa: E402
 
 # (label, column, scale, unit, digits) of the metrics compared
 METRICS = [("Hc", "Hc_m", 1e3, "mm", 2), ("Hh", "Hh_m", 1e3, "mm", 1), ("angle", "angle_deg", 1.0, "deg", 2),
-           ("bed turn", "bed_turn_1", 1.0, "", 4), ("wall slip", "wall_slip_1", 1.0, "", 4)]
+           ("bed turn", "bed_turn_1", 1.0, "", 4), ("wall roll", "wall_roll_1", 1.0, "", 4),
+           ("wall slip", "wall_slip_1", 1.0, "", 4)]
 
 
 def se_column(col):
@@ -59,7 +62,7 @@ def window_average(series, window, batches):
 
 
 def study_speeds(docs, name, window, batches):
-    """[(rpm, {column: (mean, se)}, seconds)] of a study's speeds that have a series, by speed."""
+    """[(rpm, {column: (mean, se)}, seconds, batches)] of a study's speeds that have a series, by speed."""
     out = []
     for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
         path = folder / "series_metrics.csv"
@@ -67,7 +70,7 @@ def study_speeds(docs, name, window, batches):
             series = harness.read_csv(path)
             if len(series) > 1:
                 seconds = float(series[-1]["time_s"]) - float(series[0]["time_s"])
-                out.append((float(folder.name[:-3]), window_average(series, window, batches), seconds))
+                out.append((float(folder.name[:-3]), window_average(series, window, batches), seconds, batches))
     return out
 
 
@@ -79,50 +82,78 @@ def start_row(docs, spec):
     if not rows:
         raise harness.RunFailed(f"--start {spec}: no {rpm} rpm row in {table}")
     r = rows[0]
-    return float(rpm), {col: (float(r[col]), float(r[se_column(col)])) for _, col, _, _, _ in METRICS}, float("nan")
+    return (float(rpm), {col: (float(r[col]), float(r[se_column(col)])) for _, col, _, _, _ in METRICS}, float("nan"),
+            float(r["batches"]))
 
 
-def steps(speeds):
-    """[(from rpm, to rpm, label, verdict, difference, 2 sigma)] between consecutive speeds."""
+def change(xa, sa, na, xb, sb, nb, alpha):
+    """(verdict, critical difference): 'rises' / 'drops' where b - a passes the two-sided Welch
+    t-test at alpha, else 'no change'; '?' without error bars."""
+    se = math.hypot(sa, sb)
+    if not (math.isfinite(se) and se > 0):
+        return ("no change" if se == 0 and xa == xb else "?"), float("nan")
+    dof = welch_dof(sa, na, sb, nb)
+    if not math.isfinite(dof):
+        return "?", float("nan")
+    critical = stats.t.ppf(1.0 - alpha / 2.0, dof) * se
+    return ("rises" if xb - xa > critical else "drops" if xa - xb > critical else "no change"), critical
+
+
+def steps(speeds, alpha):
+    """[(from rpm, to rpm, label, verdict, difference, critical difference)] between consecutive speeds."""
     out = []
-    for (a, ma, _), (b, mb, _) in zip(speeds, speeds[1:]):
+    for (a, ma, _, na), (b, mb, _, nb) in zip(speeds, speeds[1:]):
         for label, col, scale, _, _ in METRICS:
             (xa, sa), (xb, sb) = ma[col], mb[col]
-            out.append((a, b, label, report.change(xa, sa, xb, sb), (xb - xa) * scale, 2.0 * math.hypot(sa, sb) * scale))
+            verdict, critical = change(xa, sa, na, xb, sb, nb, alpha)
+            out.append((a, b, label, verdict, (xb - xa) * scale, critical * scale))
     return out
 
 
 def answer(step_rows, a=27.0, b=28.0):
     """What the a -> b step of Hc says, with its numbers; None without that step."""
-    for x, y, label, verdict, diff, two_sigma in step_rows:
+    for x, y, label, verdict, diff, critical in step_rows:
         if (x, y, label) == (a, b, "Hc"):
-            return verdict, diff, two_sigma
+            return verdict, diff, critical
     return None
 
 
-def markdown(studies, window, batches, command):
+def first_drop(step_rows):
+    """The first step at which Hc drops: (from, to, difference, critical), or None."""
+    for x, y, label, verdict, diff, critical in step_rows:
+        if label == "Hc" and verdict == "drops":
+            return x, y, diff, critical
+    return None
+
+
+def markdown(studies, window, batches, alpha, command):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
-             "where it exceeds twice the combined standard error. The first row of a study may be a steady "
-             "speed it started from (its averages over whole revolutions).", ""]
+             f"where it passes a two-sided Welch t-test at {alpha:g} (per comparison: about {alpha:g} of the "
+             "steps without a change read as one). The first row of a study may be the steady speed it "
+             "started from (its averages over whole revolutions).", ""]
     for label, speeds in studies:
-        rows = steps(speeds)
-        got = answer(rows)
+        rows = steps(speeds, alpha)
+        got, first = answer(rows), first_drop(rows)
         lines += [f"## {label}", ""]
         if got:
-            verdict, diff, two_sigma = got
-            lines += [f"**27 → 28 rpm: Hc {verdict}** ({diff:+.2f} mm against 2σ = {two_sigma:.2f} mm).", ""]
+            verdict, diff, critical = got
+            lines += [f"**27 → 28 rpm: Hc {verdict}** ({diff:+.2f} mm; a change counts beyond ±{critical:.2f} mm).", ""]
         else:
             lines += ["27 → 28 rpm: not run yet.", ""]
+        if first:
+            lines += [f"First drop of Hc along the steps: {first[0]:g} → {first[1]:g} rpm ({first[2]:+.2f} mm, "
+                      f"beyond ±{first[3]:.2f} mm).", ""]
         lines += ["| rpm | run [s] | " + " | ".join(f"{m[0]}{' [' + m[3] + ']' if m[3] else ''}" for m in METRICS) + " |",
                   "|---|---|" + "---|" * len(METRICS)]
-        for rpm, avg, seconds in speeds:
+        for rpm, avg, seconds, _ in speeds:
             cells = []
             for _, col, scale, _, digits in METRICS:
                 v, e = avg[col]
                 cells.append(f"{v * scale:.{digits}f} ± {e * scale:.{digits}f}" if math.isfinite(e) else f"{v * scale:.{digits}f}")
-            lines.append(f"| {rpm:g} | {'steady' if not math.isfinite(seconds) else f'{seconds:.2f}'} | " + " | ".join(cells) + " |")
+            lines.append(f"| {rpm:g} | {'steady start' if not math.isfinite(seconds) else f'{seconds:.2f}'} | "
+                         + " | ".join(cells) + " |")
         lines += ["", "| step [rpm] | " + " | ".join(m[0] for m in METRICS) + " |", "|---|" + "---|" * len(METRICS)]
         for k in range(0, len(rows), len(METRICS)):
             chunk = rows[k:k + len(METRICS)]
@@ -156,12 +187,14 @@ def main(argv=None):
                    help="per --study, in order: the steady speed it started from, as its first point ('-': none)")
     p.add_argument("--window", type=float, default=0.5, help="the last fraction of each run averaged (default: %(default)s)")
     p.add_argument("--batches", type=int, default=3, help="batches for the standard error (default: %(default)s)")
+    p.add_argument("--alpha", type=float, default=0.05, help="two-sided test level per step (default: %(default)s)")
     p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"), help="(default: docs/drum)")
     p.add_argument("--out", default=str(harness.REPO / "docs" / "drum" / "slip_test"),
                    help="OUT.md, OUT.csv, OUT.png (default: docs/drum/slip_test)")
     a = p.parse_args(argv)
-    if not (0.0 < a.window <= 1.0) or a.batches < 2:
-        p.error(f"--window {a.window} --batches {a.batches}: need 0 < window <= 1 and batches >= 2")
+    if not (0.0 < a.window <= 1.0) or a.batches < 2 or not (0.0 < a.alpha < 1.0):
+        p.error(f"--window {a.window} --batches {a.batches} --alpha {a.alpha}: need 0 < window <= 1, batches >= 2, "
+                "0 < alpha < 1")
     docs = Path(a.docs)
     starts = a.start + ["-"] * (len(a.study) - len(a.start))
     try:
@@ -174,12 +207,12 @@ def main(argv=None):
         return 1
     out = Path(a.out)
     command = "tools/drum/slip.py " + " ".join(f"--study {n} '{l}'" for n, l in a.study) + "".join(
-        f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches}"
-    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, command))
+        f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}"
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command))
     rows = []
     for label, speeds in studies:
-        for rpm, avg, seconds in speeds:
-            row = {"study": label, "rpm": rpm, "run_s": seconds}
+        for rpm, avg, seconds, batches in speeds:
+            row = {"study": label, "rpm": rpm, "run_s": seconds, "batches": batches}
             for _, col, _, _, _ in METRICS:
                 row[col], row[se_column(col)] = avg[col]
             rows.append(row)
