@@ -25,6 +25,11 @@ def history(rng, offsets, batches=5, sigma=1.0):
 
 
 class Histories(unittest.TestCase):
+    def test_verdict_names_what_differs(self):
+        self.assertIn("DISAGREE", histories.verdict(False))
+        self.assertIn("DIFFER", histories.verdict(False, timesteps=True))
+        self.assertIn("agree", histories.verdict(True, timesteps=True))
+
     def test_welch_dof_of_equal_sides_is_the_pooled_count(self):
         self.assertAlmostEqual(histories.welch_dof(0.3, 5, 0.3, 5), 8.0)
         # one side's error dominating: its own n - 1

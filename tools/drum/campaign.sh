@@ -20,6 +20,10 @@
 #    steady under them (study_yade, which then goes on to 28 and 35 rpm). tools/drum/slip.py
 #    reads both. Each slip speed is one segment: --checkpoint-now keeps nothing of one under way
 #    (at most 1.5 s simulated is redone).
+# 4. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
+#    (1.23e-6 s) with the nominal law, to a steady state (3 revolutions at least: tc/81 costs 16
+#    times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
+#    (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 mkdir -p post
@@ -31,6 +35,16 @@ py=/usr/bin/python3
 now=()
 if [[ "${1:-}" == "--checkpoint-now" ]]; then now=(--checkpoint-now); fi
 steady() { "$py" tools/drum/steady.py --var wall cylinder --var skin 0.3 --commit "$@" "${now[@]}"; }
+# commit what an analysis wrote (only these files: a campaign shares the repository)
+save() {
+  local message=$1 files=() f
+  shift
+  for f in "$@"; do if [[ -e "$f" ]]; then files+=("$f"); fi; done
+  if [[ ${#files[@]} -gt 0 ]]; then
+    git add -- "${files[@]}"
+    git diff --cached --quiet -- "${files[@]}" || git commit -q -m "$message" -- "${files[@]}"
+  fi
+}
 # a step whose start state an earlier step has not written yet (only with --checkpoint-now)
 ready() { [[ -e "$1" ]] || { echo "campaign: $1 not written yet"; false; }; }
 thesis=(--var dt 2e-5 --var exact on)
@@ -43,6 +57,7 @@ steady --name history_21rpm_from28 --speeds 21 --start-state docs/drum/study_the
 if [[ ${#now[@]} -eq 0 ]]; then
   "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/history_21rpm_from28.csv --rpm 21 \
     --out docs/drum/histories_21rpm.md || echo "campaign: the two histories of 21 rpm disagree, or the comparison failed (above)"
+  save "Drum: two histories of 21 rpm at thesis scale" docs/drum/histories_21rpm.md
 fi
 steady --name slip_thesis --speeds "$slip_speeds" --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
   "${thesis[@]}" --segment 1.5 --cap 1.5
@@ -59,11 +74,15 @@ if [[ ${#now[@]} -eq 0 ]]; then
     --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
     --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" --start study_yade:21 \
     --out docs/drum/slip_test
-  files=()
-  for f in docs/drum/slip_test.md docs/drum/slip_test.csv docs/drum/slip_test.png docs/drum/histories_21rpm.md; do
-    if [[ -e "$f" ]]; then files+=("$f"); fi
-  done
-  git add -- "${files[@]}"
-  git diff --cached --quiet -- "${files[@]}" ||
-    git commit -q -m "Drum: slip test and two histories of 21 rpm at thesis scale" -- "${files[@]}"
+  save "Drum: the slip test at thesis scale" docs/drum/slip_test.md docs/drum/slip_test.csv docs/drum/slip_test.png
 fi
+for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
+  IFS=: read -r step label segment <<< "$dt"
+  steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 3
+  if [[ ${#now[@]} -eq 0 ]]; then
+    "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/dt_$label.csv" --rpm 21 --timesteps \
+      --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
+    save "Drum: 21 rpm at tc/5 against $label at thesis scale" "docs/drum/timestep_21rpm_$label.md"
+  fi
+done

@@ -51,6 +51,14 @@ def compare(a, b, metrics, alpha=0.05):
     return rows
 
 
+def verdict(agree, timesteps=False):
+    if timesteps:
+        return ("The two timesteps agree within the error bars." if agree else
+                "The two timesteps DIFFER beyond the error bars: the timestep changes the result.")
+    return ("The histories agree within their error bars." if agree else
+            "The histories DISAGREE: the error bars or the steady-state detection do not hold.")
+
+
 def row_at(table, rpm):
     rows = [r for r in harness.read_csv(table) if r["rpm"] == rpm]
     if not rows:
@@ -65,6 +73,9 @@ def main(argv=None):
     p.add_argument("--rpm", type=float, required=True, help="the speed to compare")
     p.add_argument("--alpha", type=float, default=0.05, help="family-wise false-alarm rate (default: %(default)s)")
     p.add_argument("--out", help="also write the comparison as Markdown here")
+    p.add_argument("--timesteps", action="store_true",
+                   help="A and B are one state at two timesteps: a difference is the timestep's effect, not a "
+                        "failure of the error bars")
     args = p.parse_args(argv)
     a, b = row_at(args.a, args.rpm), row_at(args.b, args.rpm)
     rows = compare(a, b, harness.drum_metric_table(), args.alpha)
@@ -77,7 +88,7 @@ def main(argv=None):
     text = (f"{args.rpm:g} rpm, A: `{args.a}` ({a['batches']:g} batches, {a['revolutions']:.1f} revolutions), "
             f"B: `{args.b}` ({b['batches']:g} batches, {b['revolutions']:.1f} revolutions); two-sided "
             f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics).\n\n{table}\n"
-            f"{'The histories agree within their error bars.' if agree else 'The histories DISAGREE: the error bars or the steady-state detection do not hold.'}\n")
+            f"{verdict(agree, args.timesteps)}\n")
     print(text)
     if args.out:
         command = "tools/drum/histories.py " + " ".join(argv if argv is not None else sys.argv[1:])
