@@ -122,17 +122,8 @@ def alone_rate(dt, variables=None, benchmark=BENCHMARK):
         return float("nan")
     if not math.isclose(float(harness.read_json(json_path)["dt_s"]), dt, rel_tol=1e-9):
         return float("nan")
-    rates = sorted(float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast")
-    if not rates:
-        return float("nan")
-    m = len(rates)
-    return rates[m // 2] if m % 2 else 0.5 * (rates[m // 2 - 1] + rates[m // 2])
-
-
-def median(values):
-    v = sorted(values)
-    m = len(v)
-    return v[m // 2] if m % 2 else 0.5 * (v[m // 2 - 1] + v[m // 2])
+    rates = [float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast"]
+    return harness.median(rates) if rates else float("nan")
 
 
 def targets_reached(docs, name, rows, batches=(3,), benchmark=BENCHMARK):
@@ -222,9 +213,9 @@ def markdown(name, rows, reached=()):
             missed = len(mine) - len(finished)
             if finished:
                 alone = [r[5] for r in finished if math.isfinite(r[5])]
-                lines.append(f"- {b} batches: median over {len(finished)} speeds {median([30.0 * r[3] for r in finished]):.0f} "
+                lines.append(f"- {b} batches: median over {len(finished)} speeds {harness.median([30.0 * r[3] for r in finished]):.0f} "
                              "minutes on 2 cores as run"
-                             + (f", {median(alone):.0f} with the machine to itself" if len(alone) == len(finished) else "")
+                             + (f", {harness.median(alone):.0f} with the machine to itself" if len(alone) == len(finished) else "")
                              + (f" ({missed} more never reached the target: the median without them is low)"
                                 if missed else "") + ".")
     return "\n".join(lines) + "\n"
