@@ -40,9 +40,11 @@ public:
 
     void registerSettings(Settings&) {}
     // exactCollision (model viscoelastic registered its state first): the
-    // normal force the step foresaw for the next, and the continuous rate's
+    // normal force the step foresaw for the next, the continuous rate's
     // offset from the samples' where the cap bound within a
-    // step (h[6], unused then, flags it: 1, and 2 if it ended the step sliding). Only then: restart files of the
+    // step (h[6], unused then, flags it: 1, and 2 if it ended the step
+    // sliding), and the spring's force a slide ended the step with (where
+    // the next step's slide turns from). Only then: restart files of the
     // other settings keep their contact history.
     void postSettings(IContactHistorySetup* hsetup, ContactModelBase*)
     {
@@ -51,6 +53,9 @@ public:
         hsetup->add_history_value("pournin_rate_y", "1");
         hsetup->add_history_value("pournin_rate_z", "1");
         hsetup->add_history_value("pournin_forecast", "0");
+        hsetup->add_history_value("pournin_slide_x", "1");  // sliding: the spring's force at the step's end
+        hsetup->add_history_value("pournin_slide_y", "1");
+        hsetup->add_history_value("pournin_slide_z", "1");
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -88,6 +93,7 @@ public:
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
             const double* const r = &sidata.contact_history[rate_offset];
             e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.rateOffset = Vec3(r[0], r[1], r[2]), e.forecast = r[3];
+            e.force = Vec3(r[4], r[5], r[6]);
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
@@ -109,6 +115,7 @@ public:
                 double* const r = &sidata.contact_history[rate_offset];
                 for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
                 r[3] = e.forecast;
+                for (int d = 0; d < 3; ++d) r[4 + d] = e.force[d];
             }
         }
 
@@ -132,7 +139,7 @@ public:
         double* const h = &scdata.contact_history[history_offset];
         for (int d = 0; d < 7; ++d) h[d] = 0.0;
         if (rate_offset >= 0)
-            for (int d = 0; d < 4; ++d) scdata.contact_history[rate_offset + d] = 0.0;
+            for (int d = 0; d < 7; ++d) scdata.contact_history[rate_offset + d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}

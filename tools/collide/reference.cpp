@@ -209,7 +209,7 @@ struct Law {
 
 }  // namespace
 
-Outcome integrateContactOde(const Case& c, int stepsPerTc)
+Outcome integrateContactOde(const Case& c, int stepsPerTc, BodyStates* after)
 {
     Law law{c, scaled(pourninUnitCoefficients(c.params), c.effectiveMass())};
     const Oscillator unit = pourninOscillator(c.params.tc, std::log(c.params.et));
@@ -310,6 +310,7 @@ Outcome integrateContactOde(const Case& c, int stepsPerTc)
         prevOverlap = ck.overlap;
     }
     if (!touched || duration == 0.0) throw std::runtime_error("reference collision did not end within 50 tc");
+    if (after) *after = bodyStates(y, t);
     return outcomeOf(c, s0, bodyStates(y, t), duration, peak);
 }
 

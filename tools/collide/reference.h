@@ -101,7 +101,8 @@ BodyStates initialState(const Case& c, double gap = 0.0);
 
 // Continuous solution by RK4 with `stepsPerTc` steps per contact duration;
 // the Coulomb switch is applied after every step (error O(1/stepsPerTc)).
-Outcome integrateContactOde(const Case& c, int stepsPerTc = 20000);
+// `after`, if given, receives the bodies at the first step past separation.
+Outcome integrateContactOde(const Case& c, int stepsPerTc = 20000, BodyStates* after = nullptr);
 
 // Closed forms, where they exist for the case (head-on impacts; the sticking
 // and gross-sliding regimes of oblique impacts on a wall or a pair).
