@@ -871,6 +871,7 @@ inline CappedFlow cappedFlow(const FreeOscillator& o, TangentialMotion m, const 
                 const Vec3 loads = o.k * m.u - o.c * phi;
                 if (loads.norm() * (b - a) > noise) dir = loads.normalized();
             }
+            endDir = Vec3::Zero();  // (a later slide in the step has its own direction)
             if (onCap && forceBefore.squaredNorm() > 0.0) {
                 if (const auto turn = detail::slidingDirection(o, m.u, phi, forceBefore, cap, src.span, b - a))
                     dir = turn->mean, endDir = turn->end;
