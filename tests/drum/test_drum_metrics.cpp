@@ -684,6 +684,40 @@ TEST(DrumSteadyState, BatchMeansStandardErrorOfAnAR1SeriesIsHonest)
     EXPECT_LT(naiveCoverage, 0.42);
 }
 
+// The SE's upper confidence bound, against chi-square tables (lower 5 %
+// points 0.1026, 0.7107 and 10.117 for 2, 4 and 19 degrees of freedom: 4
+// digits, so 1e-3), and its coverage: over M = 4000 replicas of 3
+// independent N(0, 1) batch means, the bound must reach the true SE 1/sqrt(3)
+// in 95 % of them (binomial sd 0.0034: 3 sd -> [0.9397, 0.9603]). The SE as
+// estimated reaches it only where s >= 1, P(chi2_2 >= 2) = exp(-1) = 0.37:
+// the reason a 3-batch stop rule needs the bound.
+TEST(DrumSteadyState, StandardErrorUpperBoundCoversAtItsConfidence)
+{
+    EXPECT_NEAR(drum::seUpperBound(3, 0.95), std::sqrt(2.0 / 0.1026), 1e-3 * 4.4);
+    EXPECT_NEAR(drum::seUpperBound(5, 0.95), std::sqrt(4.0 / 0.7107), 1e-3 * 2.4);
+    EXPECT_NEAR(drum::seUpperBound(20, 0.95), std::sqrt(19.0 / 10.117), 1e-3 * 1.4);
+    EXPECT_EQ(drum::seUpperBound(3, 0.0), 1.0);
+    EXPECT_THROW(drum::seUpperBound(1, 0.95), std::invalid_argument);
+    EXPECT_THROW(drum::seUpperBound(3, 1.0), std::invalid_argument);
+    const int replicas = 4000;
+    std::mt19937 rng(7);
+    std::normal_distribution<double> normal;
+    int bounded = 0, estimated = 0;
+    const double trueSE = 1.0 / std::sqrt(3.0), f = drum::seUpperBound(3, 0.95);
+    for (int r = 0; r < replicas; ++r) {
+        const std::vector<double> x = {normal(rng), normal(rng), normal(rng)};
+        const drum::Average a = drum::average(x, 0, 1);
+        ASSERT_EQ(a.batches, 3);
+        bounded += a.stdError * f >= trueSE;
+        estimated += a.stdError >= trueSE;
+    }
+    const double coverage = double(bounded) / replicas, plain = double(estimated) / replicas;
+    std::printf("95 %% bound covers the true SE in %.4f of replicas; the estimate in %.4f\n", coverage, plain);
+    EXPECT_GE(coverage, 0.9397);
+    EXPECT_LE(coverage, 0.9603);
+    EXPECT_NEAR(plain, std::exp(-1.0), 3.0 * std::sqrt(0.37 * 0.63 / replicas));
+}
+
 // A trend of 16 standard deviations over the run under AR(1) noise (phi
 // 0.9) has not settled: MSER searched over the first half only passed 11 of
 // these 40 series; over all but the last tenth, at most 2. And a series that
@@ -736,7 +770,17 @@ TEST(DrumSteadyState, StopRuleSettlesThenReachesItsTarget)
         EXPECT_NEAR(l.averages[0].stdError, 10.0 / std::sqrt(double(x.size() - l.from)), 0.3 * target) << seed;
         EXPECT_TRUE(l.done) << seed;
         EXPECT_FALSE(drum::stopRule({x}, {{x, target}}, batch, l.batches + 1).done) << seed;  // min-batches
+        // --confidence: a target between the SE and its 95 % bound is met by
+        // the estimate, not by the bound; one just above the bound is met.
+        const double se = l.averages[0].stdError, f = drum::seUpperBound(l.batches, 0.95);
+        const drum::Verdict b = drum::stopRule({x}, {{x, se * (1.0 + f) / 2.0}}, batch, 5, 0.95);
+        EXPECT_FALSE(b.done) << seed;
+        EXPECT_DOUBLE_EQ(b.seFactor, f) << seed;
+        EXPECT_TRUE(drum::stopRule({x}, {{x, se * (1.0 + f) / 2.0}}, batch).done) << seed;
+        EXPECT_TRUE(drum::stopRule({x}, {{x, se * f * 1.001}}, batch, 5, 0.95).done) << seed;
     }
+    EXPECT_THROW(drum::stopRule({}, {}, batch, 5, 1.0), std::invalid_argument);
+    EXPECT_THROW(drum::stopRule({}, {}, batch, 5, -0.1), std::invalid_argument);
     // a pure trend never settles, however small its noise
     std::vector<double> trend(5000);
     for (size_t t = 0; t < trend.size(); ++t) trend[t] = 1e-3 * double(t);

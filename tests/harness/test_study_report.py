@@ -95,6 +95,24 @@ class Report(unittest.TestCase):
         t, verdict = report.time_to_target(noisy, loose, 60, 1e-3, 5)
         self.assertGreaterEqual(t, 4.95)
         self.assertLess(float(verdict["Hc_se_m"]), 0.03)
+        # with the SE's 95 % bound (chi-square over the batches' degrees of freedom, here from scipy),
+        # 3 batches suffice only where 4.42 times the estimate meets the 30 mm: later than the
+        # estimate alone, and at the verdict the bound is within the target
+        from scipy.stats import chi2
+        t3, plain = report.time_to_target(noisy, loose, 60, 1e-3, 3)
+        tb, bound = report.time_to_target(noisy, loose, 60, 1e-3, 3, 0.95)
+        self.assertGreater(tb, t3)
+        nb = int(bound["batches"])
+        self.assertAlmostEqual(float(bound["se_factor"]), math.sqrt((nb - 1) / chi2.ppf(0.05, nb - 1)), places=6)
+        self.assertLessEqual(float(bound["Hc_se_m"]) * float(bound["se_factor"]), 0.03)
+        self.assertEqual(float(plain["se_factor"]), 1.0)
+
+    def test_a_median_with_lower_bounds(self):
+        # a speed that never reached the target counts at its whole run's time, a lower bound: the
+        # median stands where that speed lies above it either way, else it is only a lower bound
+        self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [False] * 4 + [True]), "30")
+        self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [True] + [False] * 4), "≥ 30")
+        self.assertEqual(report.censored_median([10, 20, 30, 40], [False] * 4), "25")
 
     def test_time_with_the_machine_to_itself(self):
         # the benchmark's median rate over its `fast` rounds, only at the study's step
@@ -114,14 +132,21 @@ class Report(unittest.TestCase):
             self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "wall": "surface"}, stem)))
             self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "conventions": "yade"}, stem)))
             self.assertTrue(math.isnan(report.alone_rate(2e-5, study, Path(d) / "none")))
-        # the table's two columns and their medians: as run, half the CPU time; alone, as given
+        # the table's two columns and their medians: as run, half the CPU time; alone, as given. A
+        # speed that never reached the target counts at its whole run's time, a lower bound: here it
+        # lies below the median, so the median is only a lower bound too
         verdict = {"Hc_m": -0.1, "Hc_se_m": 1e-5, "angle_deg": 30.0, "angle_se_deg": 0.01}
-        reached = [(7, 3, 10.0, 2.0, verdict, 50.0), (14, 3, 8.0, 1.0, verdict, 40.0), (21, 3, 6.0, 3.0, verdict, 20.0),
-                   (28, 3, float("nan"), float("nan"), None, float("nan"))]
+        reached = [(7, (3, 0.0), 10.0, 2.0, verdict, 50.0), (14, (3, 0.0), 8.0, 1.0, verdict, 40.0),
+                   (21, (3, 0.0), 6.0, 3.0, verdict, 20.0), (28, (3, 0.0), 6.0, 0.5, None, 10.0),
+                   (7, (3, 0.95), 10.0, 2.0, verdict, 50.0)]
         text = report.markdown("s", [row(7, 0.05, 0.001)], reached)
         self.assertIn("| 7 | 3 | 10.00 | 2.0 | 60 | 50 | -100.000 ± 0.010 | 30.000 ± 0.010 |", text)
-        self.assertIn("- 3 batches: median over 3 speeds 60 minutes on 2 cores as run, 40 with the machine to itself "
-                      "(1 more never reached the target", text)
+        self.assertIn("| 28 | 3 | > 6.00 | > 0.5 | > 15 | > 10 | not reached | – |", text)
+        self.assertIn("| 7 | 3, 95 % bound | 10.00 |", text)
+        self.assertIn("- 3 batches: median over 4 speeds ≥ 45 minutes on 2 cores as run, ≥ 30 with the machine to "
+                      "itself (1 never reached the target", text)
+        self.assertIn("- 3 batches, the standard errors' 95 % bound: median over 1 speeds 60 minutes on 2 cores as run, 50 with the "
+                      "machine to itself.", text)
 
     def test_no_table_no_report(self):
         with tempfile.TemporaryDirectory() as d:

@@ -7,8 +7,8 @@
 //                       [--batch-seconds B] [--cache C]
 //       O_average.csv (rpm,beads,steady_from_s,snapshots,batches,<metric column, its _se_ column>...)
 //   drum_metrics steady --prefix P --dt DT --rpm RPM --batch-seconds B [--target Hc=0.0003 ...]
-//                       [--min-batches 5] [--skip T0] [--cache C]
-//       the stop rule: one CSV row settled,steady_from_s,snapshots,batches,done,<metric>,<metric>_se_<unit>...
+//                       [--min-batches 5] [--confidence 0] [--skip T0] [--cache C]
+//       the stop rule: one CSV row settled,steady_from_s,snapshots,batches,done,se_factor,<metric>,<metric>_se_<unit>...
 //   drum_metrics table --out post/sweep post/drum_*rpm_average.csv
 //       the averages by column name, one row per run sorted by rpm: O.csv, O.md, O.png
 //   drum_metrics metrics
@@ -443,7 +443,8 @@ std::vector<std::pair<size_t, double>> parseTargets(const std::vector<std::strin
 
 // The stop rule on one run: one CSV row on stdout.
 int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip, double batchSeconds,
-                  const std::vector<std::string>& targetSpecs, int minBatches, const std::string& cacheFile)
+                  const std::vector<std::string>& targetSpecs, int minBatches, double confidence,
+                  const std::string& cacheFile)
 {
     const std::vector<std::pair<size_t, double>> targeted = parseTargets(targetSpecs);
     const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300, cacheFile);
@@ -453,11 +454,11 @@ int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip,
         targets.push_back({{}, se});
         for (const drum::BedMetrics& m : ms) targets.back().series.push_back(m.values[i]);
     }
-    const drum::Verdict v = drum::stopRule(watchedSeries(ms), targets, batchSize, minBatches);
-    std::vector<std::string> header = {"settled", "steady_from_s", "snapshots", "batches", "done"};
+    const drum::Verdict v = drum::stopRule(watchedSeries(ms), targets, batchSize, minBatches, confidence);
+    std::vector<std::string> header = {"settled", "steady_from_s", "snapshots", "batches", "done", "se_factor"};
     std::vector<std::string> row = {v.settled ? "1" : "0", v.settled ? number(ms[v.from].time) : "nan",
                                     std::to_string(int(ms.size()) - v.from), std::to_string(v.batches),
-                                    v.done ? "1" : "0"};
+                                    v.done ? "1" : "0", number(v.seFactor)};
     for (size_t k = 0; k < targeted.size(); ++k) {
         const drum::Metric& m = table()[targeted[k].first];
         header.push_back(m.column()), header.push_back(m.seColumn());
@@ -510,6 +511,7 @@ int main(int argc, char** argv)
     s->add_option("--cache", cacheFile, cacheHelp);
     std::vector<std::string> targetSpecs;
     int minBatches = 5;
+    double confidence = 0.0;
     CLI::App* st = app.add_subcommand("steady", "the stop rule: settled, and the target standard errors reached?");
     st->add_option("--prefix", prefix, "bead files are <prefix>_<step>.vtp")->required();
     st->add_option("--dt", dt, "timestep of the run [s]")->check(CLI::PositiveNumber)->capture_default_str();
@@ -519,6 +521,11 @@ int main(int argc, char** argv)
         ->check(CLI::PositiveNumber);
     st->add_option("--target", targetSpecs, "KEY=SE in the metric's unit (default: Hc=0.0003 angle=0.3)");
     st->add_option("--min-batches", minBatches, "fewest whole batches for done")->capture_default_str();
+    st->add_option("--confidence", confidence,
+                   "0: each SE as estimated within its target; e.g. 0.95: its 95 % upper confidence bound (chi-square "
+                   "over the batches' degrees of freedom) within it")
+        ->check(CLI::Range(0.0, 0.999))
+        ->capture_default_str();
     st->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
     st->add_option("--cache", cacheFile, cacheHelp);
     CLI::App* t = app.add_subcommand("table", "combine runs' averages against speed");
@@ -539,7 +546,7 @@ int main(int argc, char** argv)
         }
         if (*l) return listMetrics();
         if (*s) return series(prefix, seriesOut, dt, rpm, skip, until, averaging == "steady", batchSeconds, cacheFile);
-        if (*st) return steadyVerdict(prefix, dt, rpm, skip, batchSeconds, targetSpecs, minBatches, cacheFile);
+        if (*st) return steadyVerdict(prefix, dt, rpm, skip, batchSeconds, targetSpecs, minBatches, confidence, cacheFile);
         return crossSpeedTable(out, files);
     } catch (const std::exception& e) {
         std::cerr << "drum_metrics: " << e.what() << "\n";

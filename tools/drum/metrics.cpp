@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
 
 #include <vtkDataArray.h>
 #include <vtkDataSetReader.h>
@@ -498,9 +499,20 @@ Average average(const std::vector<double>& v, int from, int batchSize)
     return {mu, std::sqrt(var / (nb - 1) / nb), nb};
 }
 
-Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
-                 int minBatches)
+double seUpperBound(int batches, double confidence)
 {
+    if (!(confidence >= 0.0 && confidence < 1.0))
+        throw std::invalid_argument("confidence " + std::to_string(confidence) + ": must be in [0, 1)");
+    if (confidence == 0.0) return 1.0;
+    if (batches < 2) throw std::invalid_argument("an SE bound needs 2 batches at least, not " + std::to_string(batches));
+    const double dof = batches - 1;
+    return std::sqrt(dof / boost::math::quantile(boost::math::chi_squared(dof), 1.0 - confidence));
+}
+
+Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
+                 int minBatches, double confidence)
+{
+    (void)seUpperBound(2, confidence);  // a bad confidence stops here, whatever the data
     Verdict r;
     const int start = steadyStart(watched);
     r.settled = start >= 0;
@@ -513,9 +525,14 @@ Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vec
         const Average a = average(t.series, r.from, batchSize);
         r.averages.push_back(a);
         r.batches = std::min(r.batches, a.batches);
-        r.done = r.done && std::isfinite(a.stdError) && a.stdError <= t.stdError;
     }
-    r.done = r.done && r.batches >= minBatches;
+    r.done = r.done && r.batches >= std::max(minBatches, 2);
+    if (r.batches >= 2 && r.batches < std::numeric_limits<int>::max()) r.seFactor = seUpperBound(r.batches, confidence);
+    if (r.done) {
+        for (size_t k = 0; k < targets.size(); ++k)
+            r.done = r.done && std::isfinite(r.averages[k].stdError) &&
+                     r.averages[k].stdError * r.seFactor <= targets[k].stdError;
+    }
     return r;
 }
 

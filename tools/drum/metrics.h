@@ -123,12 +123,24 @@ struct Target {
 };
 struct Verdict {
     bool settled = false;  // steadyStart found a start in the first half
-    bool done = false;     // settled, batches >= minBatches, every SE <= its target
+    bool done = false;     // settled, batches >= minBatches, every SE (times seFactor) <= its target
     int from = -1;         // first sample averaged (the last half when not settled)
     int batches = 0;       // whole batches averaged (the fewest over the targets)
     std::vector<Average> averages;  // one per target
+    double seFactor = 1.0;          // what the SEs were multiplied by before the comparison
 };
+// `confidence` 0: each SE as estimated must be within its target. Above 0:
+// its upper confidence bound must be (seUpperBound), so that a few batches,
+// whose SE estimate scatters widely, stop only where even the bound is small.
 Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
-                 int minBatches = 5);
+                 int minBatches = 5, double confidence = 0.0);
+
+// The factor from a batch-means SE over `batches` batches to its upper
+// confidence bound at `confidence`, for independent, normal batch means:
+// (nb - 1) s^2 / sigma^2 is chi-square with nb - 1 degrees of freedom, so
+// sigma <= s sqrt((nb - 1) / chi2_{1 - confidence}(nb - 1)) with that
+// probability (3 batches at 0.95: 4.42; 5: 2.37; 20: 1.37). 1 for confidence
+// 0; throws std::invalid_argument outside [0, 1) or for fewer than 2 batches.
+double seUpperBound(int batches, double confidence);
 
 }  // namespace drum

@@ -72,8 +72,11 @@ def parse_targets(pairs):
 def settings_of(args):
     """What makes two runs of a speed comparable: a committed speed with other settings is not
     this study's."""
-    return {"period": args.period, "variables": args.variables, "segment": args.segment, "cap": args.cap,
-            "settle": args.settle, "targets": args.targets, "min_batches": args.min_batches}
+    settings = {"period": args.period, "variables": args.variables, "segment": args.segment, "cap": args.cap,
+                "settle": args.settle, "targets": args.targets, "min_batches": args.min_batches}
+    if args.confidence > 0:  # absent otherwise: studies committed before the option stay comparable
+        settings["confidence"] = args.confidence
+    return settings
 
 
 def sha256(path):
@@ -305,6 +308,8 @@ class Study:
     def check(self, rpm):
         args = ["steady", "--prefix", self.prefix(rpm), "--dt", self.dt, "--rpm", rpm, "--cache", self.cache(rpm),
                 "--batch-seconds", f"{revolution(rpm):.10g}", "--min-batches", self.args.min_batches]
+        if self.args.confidence > 0:
+            args += ["--confidence", f"{self.args.confidence:g}"]
         for key, value in self.args.targets.items():
             args += ["--target", f"{key}={value:g}"]
         return harness.read_csv_text(harness.tool("drum_metrics", *args))[0]
@@ -453,6 +458,11 @@ def arguments(argv=None):
                    help="standard error to reach, per metric key of `drum_metrics metrics` (repeatable; "
                         "default: Hc=0.0003 angle=0.3)")
     p.add_argument("--min-batches", type=int, default=5, help="batches (revolutions) at least (default: %(default)s)")
+    p.add_argument("--confidence", type=float, default=0.0,
+                   help="0: the standard errors as estimated must meet the targets; e.g. 0.95: their 95 %% upper "
+                        "confidence bound must (chi-square over the batches' degrees of freedom: 4.42 times the "
+                        "estimate from 3 batches), which lets calm speeds stop at --min-batches 3 and keeps noisy "
+                        "ones going (default: %(default)s)")
     p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"), default=[],
                    help="a drum.in -var for every run (repeatable), e.g. --var dt 2e-5 --var exact on")
     p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"),
@@ -470,6 +480,10 @@ def arguments(argv=None):
         args.speeds = chain.parse_speeds(args.speeds)
         args.variables = chain.parse_vars(args.var)
         args.targets = parse_targets(args.target)
+        if not 0.0 <= args.confidence < 1.0:
+            raise chain.PlanError(f"--confidence {args.confidence}: must be in [0, 1)")
+        if args.confidence > 0 and args.min_batches < 2:
+            raise chain.PlanError(f"--min-batches {args.min_batches}: the SE bound needs 2 batches at least")
         if args.segment <= 0 or args.cap < args.segment or args.settle < 0:
             raise chain.PlanError(f"--segment {args.segment} --cap {args.cap} --settle {args.settle}: "
                                   "need 0 < segment <= cap, settle >= 0")
