@@ -778,6 +778,8 @@ TEST(DrumSteadyState, StopRuleSettlesThenReachesItsTarget)
         EXPECT_DOUBLE_EQ(b.seFactor, f) << seed;
         EXPECT_TRUE(drum::stopRule({x}, {{x, se * (1.0 + f) / 2.0}}, batch).done) << seed;
         EXPECT_TRUE(drum::stopRule({x}, {{x, se * f * 1.001}}, batch, 5, 0.95).done) << seed;
+        // every target gets the bound, not only the first
+        EXPECT_FALSE(drum::stopRule({x}, {{x, 1e6}, {x, se * (1.0 + f) / 2.0}}, batch, 5, 0.95).done) << seed;
     }
     EXPECT_THROW(drum::stopRule({}, {}, batch, 5, 1.0), std::invalid_argument);
     EXPECT_THROW(drum::stopRule({}, {}, batch, 5, -0.1), std::invalid_argument);

@@ -74,7 +74,8 @@ class Report(unittest.TestCase):
                      "Hc_m": hc(k), "drum_force_N": 1e-3, "angle_deg": 25.0, "layer_thickness_m": 0.05,
                      "surface_velocity_mps": 0.5, "bed_turn_1": 1.0, "wall_slip_1": 0.0, "wall_roll_1": 0.0}
                     for k in range(n)]
-        run = {"settings": {"targets": {"Hc": 3e-4, "angle": 0.3}}}
+        # checked where the driver checks: after 1 s segments, then where the next batch completes
+        run = {"settings": {"targets": {"Hc": 3e-4, "angle": 0.3}, "segment": 1.0, "settle": 2.0}}
         for b in (3, 5):
             t, verdict = report.time_to_target(series(100), run, 60, 1e-3, b)
             self.assertAlmostEqual(t, (20 * b - 1) * 0.05, places=9)
@@ -91,7 +92,7 @@ class Report(unittest.TestCase):
         t, verdict = report.time_to_target(noisy, run, 60, 1e-3, 5)
         self.assertTrue(t != t and verdict is None)
         # the same series is settled: with a target of 30 mm it is done once 5 revolutions fit
-        loose = {"settings": {"targets": {"Hc": 0.03, "angle": 0.3}}}
+        loose = {"settings": {**run["settings"], "targets": {"Hc": 0.03, "angle": 0.3}}}
         t, verdict = report.time_to_target(noisy, loose, 60, 1e-3, 5)
         self.assertGreaterEqual(t, 4.95)
         self.assertLess(float(verdict["Hc_se_m"]), 0.03)
@@ -106,6 +107,17 @@ class Report(unittest.TestCase):
         self.assertAlmostEqual(float(bound["se_factor"]), math.sqrt((nb - 1) / chi2.ppf(0.05, nb - 1)), places=6)
         self.assertLessEqual(float(bound["Hc_se_m"]) * float(bound["se_factor"]), 0.03)
         self.assertEqual(float(plain["se_factor"]), 1.0)
+
+    def test_the_replay_stops_where_the_study_stopped(self):
+        # replayed with a committed speed's own rule, where its driver checked: the speed's own
+        # simulated time (its driver stopped at the first check that said done)
+        docs = Path(__file__).resolve().parents[2] / "docs" / "drum" / "study_thesis"
+        for rpm in (56, 63):
+            series = report.harness.read_csv(docs / f"{rpm}rpm" / "series_metrics.csv")
+            run = report.harness.read_json(docs / f"{rpm}rpm" / "run.json")
+            t, verdict = report.time_to_target(series, run, rpm, 2e-5, run["settings"]["min_batches"])
+            self.assertAlmostEqual(t, run["simulated_s"], places=6)
+            self.assertEqual(int(verdict["done"]), 1)
 
     def test_a_median_with_lower_bounds(self):
         # a speed that never reached the target counts at its whole run's time, a lower bound: the

@@ -447,6 +447,7 @@ int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip,
                   const std::string& cacheFile)
 {
     const std::vector<std::pair<size_t, double>> targeted = parseTargets(targetSpecs);
+    (void)drum::seUpperBound(2, confidence);  // a bad --confidence stops before any snapshot is read
     const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300, cacheFile);
     const int batchSize = batchSamples(batchSeconds, ms);
     std::vector<drum::Target> targets;
@@ -524,7 +525,7 @@ int main(int argc, char** argv)
     st->add_option("--confidence", confidence,
                    "0: each SE as estimated within its target; e.g. 0.95: its 95 % upper confidence bound (chi-square "
                    "over the batches' degrees of freedom) within it")
-        ->check(CLI::Range(0.0, 0.999))
+        ->check(CLI::Range(0.0, 1.0))  // (1 itself: the library names it)
         ->capture_default_str();
     st->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
     st->add_option("--cache", cacheFile, cacheHelp);
