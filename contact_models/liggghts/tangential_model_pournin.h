@@ -92,8 +92,11 @@ public:
         if (exact) {
             const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
             const double* const r = &sidata.contact_history[rate_offset];
-            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.rateOffset = Vec3(r[0], r[1], r[2]), e.forecast = r[3];
-            e.force = Vec3(r[4], r[5], r[6]);
+            // (the offset and the slide's force are read and kept only where
+            // they count: off the path, sliding; the common step skips both)
+            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.forecast = r[3];
+            if (e.offPath) e.rateOffset = Vec3(r[0], r[1], r[2]);
+            if (e.sliding) e.force = Vec3(r[4], r[5], r[6]);
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
@@ -113,9 +116,11 @@ public:
             else {
                 h[6] = e.offPath ? (e.sliding ? 2.0 : 1.0) : 0.0;
                 double* const r = &sidata.contact_history[rate_offset];
-                for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
                 r[3] = e.forecast;
-                for (int d = 0; d < 3; ++d) r[4 + d] = e.force[d];
+                if (e.offPath)
+                    for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
+                if (e.sliding)
+                    for (int d = 0; d < 3; ++d) r[4 + d] = e.force[d];
             }
         }
 
