@@ -447,7 +447,7 @@ int steadyVerdict(const std::string& prefix, double dt, double rpm, double skip,
                   const std::string& cacheFile)
 {
     const std::vector<std::pair<size_t, double>> targeted = parseTargets(targetSpecs);
-    (void)drum::seUpperBound(2, confidence);  // a bad --confidence stops before any snapshot is read
+    drum::checkConfidence(confidence);  // before any snapshot is read
     const std::vector<drum::BedMetrics> ms = measureRun(prefix, dt, rpm, skip, 1e300, cacheFile);
     const int batchSize = batchSamples(batchSeconds, ms);
     std::vector<drum::Target> targets;

@@ -499,10 +499,15 @@ Average average(const std::vector<double>& v, int from, int batchSize)
     return {mu, std::sqrt(var / (nb - 1) / nb), nb};
 }
 
-double seUpperBound(int batches, double confidence)
+void checkConfidence(double confidence)
 {
     if (!(confidence >= 0.0 && confidence < 1.0))
         throw std::invalid_argument("confidence " + std::to_string(confidence) + ": must be in [0, 1)");
+}
+
+double seUpperBound(int batches, double confidence)
+{
+    checkConfidence(confidence);
     if (confidence == 0.0) return 1.0;
     if (batches < 2) throw std::invalid_argument("an SE bound needs 2 batches at least, not " + std::to_string(batches));
     const double dof = batches - 1;
@@ -512,7 +517,7 @@ double seUpperBound(int batches, double confidence)
 Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vector<Target>& targets, int batchSize,
                  int minBatches, double confidence)
 {
-    (void)seUpperBound(2, confidence);  // a bad confidence stops here, whatever the data
+    checkConfidence(confidence);  // whatever the data (a bound is computed only from 2 batches)
     Verdict r;
     const int start = steadyStart(watched);
     r.settled = start >= 0;

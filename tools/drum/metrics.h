@@ -142,5 +142,7 @@ Verdict stopRule(const std::vector<std::vector<double>>& watched, const std::vec
 // probability (3 batches at 0.95: 4.42; 5: 2.37; 20: 1.37). 1 for confidence
 // 0; throws std::invalid_argument outside [0, 1) or for fewer than 2 batches.
 double seUpperBound(int batches, double confidence);
+// Throws std::invalid_argument, naming it, for a confidence outside [0, 1).
+void checkConfidence(double confidence);
 
 }  // namespace drum

@@ -242,28 +242,27 @@ def markdown(name, rows, reached=()):
                   "| rpm | batches | simulated [s] | CPU hours | minutes on 2 cores, as run | minutes on 2 cores, "
                   "machine to itself | Hc [mm] | angle [deg] |",
                   "|---|---|---|---|---|---|---|---|"]
-        for rpm, b, t, cpu, v, alone in reached:
+        for rpm, rule, t, cpu, v, alone in reached:
             # under a bound, the bound beside the estimate: the error bar to quote (from 2 degrees
             # of freedom, +-2 estimated SE covers 82 % of replicas, not 95 %)
-            f = float(v.get("se_factor", 1.0)) if v and b[1] > 0 else None
+            f = float(v.get("se_factor", 1.0)) if v and rule[1] > 0 else None
             bound = (lambda se: f" (≤ {se * f:.3f})") if f else (lambda se: "")
-            b = rule_label(b)
             avg = (f"{1e3 * float(v['Hc_m']):.3f} ± {1e3 * float(v['Hc_se_m']):.3f}{bound(1e3 * float(v['Hc_se_m']))} | "
                    f"{float(v['angle_deg']):.3f} ± {float(v['angle_se_deg']):.3f}{bound(float(v['angle_se_deg']))}"
                    ) if v else "not reached | –"
             more = "" if v else "> "
-            lines.append(f"| {rpm} | {b} | {more}{t:.2f} | {more}{cpu:.1f} | {more}{30.0 * cpu:.0f} | "
+            lines.append(f"| {rpm} | {rule_label(rule)} | {more}{t:.2f} | {more}{cpu:.1f} | {more}{30.0 * cpu:.0f} | "
                          f"{more}{alone:.0f} | {avg} |")
         lines.append("")
         for b in sorted({r[1] for r in reached}):
             mine = [r for r in reached if r[1] == b]
-            missed = sum(r[4] is None for r in mine)
+            lower = [r[4] is None for r in mine]  # never done: the whole run's time, a lower bound
+            missed = sum(lower)
             line = (f"- {b[0]} batches" + (f", the standard errors' {100 * b[1]:g} % bound" if b[1] > 0 else "")
-                    + f": median over {len(mine)} speeds " + censored_median(
-                [30.0 * r[3] for r in mine], [r[4] is None for r in mine]) + " minutes on 2 cores as run")
+                    + f": median over {len(mine)} speeds " + censored_median([30.0 * r[3] for r in mine], lower)
+                    + " minutes on 2 cores as run")
             if all(math.isfinite(r[5]) for r in mine):
-                line += ", " + censored_median([r[5] for r in mine], [r[4] is None for r in mine]) + \
-                        " with the machine to itself"
+                line += ", " + censored_median([r[5] for r in mine], lower) + " with the machine to itself"
             if missed:
                 line += (f" ({missed} never reached the target within its run, counted at its whole run's time, "
                          "a lower bound; the median holds whatever their times are where it is given without '≥')")
