@@ -58,6 +58,33 @@ class Histories(unittest.TestCase):
                      for _ in range(1000))
         self.assertGreater(caught / 1000, 0.95)  # measured 0.998
 
+    def test_the_difference_it_reports_as_detectable_is_caught_at_that_rate(self):
+        # the check on histories with a true offset of its own "caught at 80 %" figure (true SEs
+        # given): caught in 80 % of pairs, within 4 binomial sd of 2000 pairs (0.036), which also
+        # covers the figure's own Monte Carlo error (20,000 replicas: 0.003)
+        from scipy import stats
+        critical = lambda dof: stats.t.ppf(1 - 0.05 / 14, dof)  # noqa: E731 (7 metrics, as compare's)
+        n = 2000
+        for batches_a, batches_b in ((3, 3), (5, 5), (3, 12)):
+            rng = np.random.default_rng(batches_a * 100 + batches_b)
+            se_a, se_b = 1 / math.sqrt(batches_a), 1 / math.sqrt(batches_b)
+            shift = histories.detectable(se_a, batches_a, se_b, batches_b, critical)
+            caught = sum(not histories.compare(history(rng, [shift] + [0] * 6, batches_a),
+                                               history(rng, [0] * 7, batches_b), METRICS)[0]["agree"]
+                         for _ in range(n))
+            self.assertLess(abs(caught / n - 0.8), 4 * math.sqrt(0.16 / n), (batches_a, batches_b, caught / n))
+        # at 3 batches a side the estimated SEs and degrees of freedom cost power: the figure lies
+        # well above what a noncentral t at the pooled 4 degrees of freedom gives (6.7 SEs)
+        self.assertGreater(histories.detectable(1, 3, 1, 3, critical) / math.sqrt(2), 8.0)
+
+    def test_compare_gives_the_detectable_difference_when_asked(self):
+        rng = np.random.default_rng(3)
+        a, b = history(rng, [0] * 7), history(rng, [0] * 7)
+        self.assertNotIn("detectable", histories.compare(a, b, METRICS)[0])
+        rows = histories.compare(a, b, METRICS, power=0.8)
+        self.assertTrue(all(r["detectable"] > 3 * r["combined_se"] for r in rows))
+        self.assertTrue(math.isnan(histories.detectable(1.0, 1, 1.0, 5, lambda d: 2.0)))  # one batch: no SE
+
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)
         b = dict(a)
