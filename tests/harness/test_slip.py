@@ -1,7 +1,8 @@
 """The slip test's reading (tools/drum/slip.py) on studies with known answers: a series that drops
 between 27 and 28 rpm and one that rises throughout, batch means on values whose standard error
-is known, a start row taken from a study table, and the step test's false alarms and power on
-windows of white noise."""
+is known, a start row taken from a study table, the step test's false alarms and power on
+windows of white noise, and the false-alarm check on a steady study's series (right on white
+noise, and it sees correlated noise overstate the steps)."""
 
 import csv
 import math
@@ -33,7 +34,61 @@ def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
                         "bed_turn_1": turn, "wall_roll_1": 0.02, "wall_slip_1": 0.002})
 
 
+def write_steady(docs, name, rpm, noise, n=3000, start=5.0):
+    """A steady speed of a steady study: samples every 0.05 s from t = 0, steady from `start`
+    (series_average.csv), Hc and the others drawn by noise(k) about fixed values."""
+    folder = docs / name / f"{rpm}rpm"
+    folder.mkdir(parents=True)
+    with open(folder / "series_metrics.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, COLUMNS)
+        w.writeheader()
+        for k in range(n):
+            w.writerow({"time_s": 0.05 * k, "Hh_m": 0.09 + 1e-4 * noise(), "Hc_m": -0.097 + 1e-4 * noise(),
+                        "angle_deg": 30.0 + 0.1 * noise(), "bed_turn_1": 0.99 + 1e-3 * noise(),
+                        "wall_roll_1": 0.02 + 1e-3 * noise(), "wall_slip_1": 0.002 + 1e-4 * noise()})
+    with open(folder / "series_average.csv", "w", newline="") as f:
+        f.write(f"rpm,steady_from_s\n{rpm},{start}\n")
+
+
 class Slip(unittest.TestCase):
+    def test_false_alarms_where_nothing_changes(self):
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            rng = random.Random(5)
+            write_steady(docs, "white", 21, lambda: rng.gauss(0.0, 1.0))
+            # the steady part cut into pieces of 1.45 s (30 samples, as a 1.5 s slip speed's series):
+            # (3000 - 100) / 30 = 96 pieces, 95 steps, 6 metrics
+            called, compared = slip.null_rate(docs, "white", 1.45, 0.5, 3, 0.05)
+            self.assertEqual(compared, 95 * 6)
+            # independent batch means: 0.05 per comparison, within 4 binomial sd (0.036)
+            self.assertLess(abs(called / compared - 0.05), 4 * math.sqrt(0.05 * 0.95 / compared), called / compared)
+            # noise correlated over many samples (AR(1), 0.95 per 0.05 s: about 1 s) makes the 0.25 s
+            # batch means of one window alike, their SE far too small: the check must see that
+            state = [0.0] * 6
+            def correlated(box=[0]):  # noqa: B006 (one AR(1) chain per metric, metrics in turn)
+                i = box[0] % 6
+                box[0] += 1
+                state[i] = 0.95 * state[i] + math.sqrt(1 - 0.95 ** 2) * rng.gauss(0.0, 1.0)
+                return state[i]
+            write_steady(docs, "correlated", 21, correlated)
+            called, compared = slip.null_rate(docs, "correlated", 1.45, 0.5, 3, 0.05)
+            self.assertGreater(called / compared, 0.2, called / compared)
+
+    def test_the_report_states_the_false_alarm_rate(self):
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            rng = random.Random(6)
+            write_steady(docs, "study_thesis", 21, lambda: rng.gauss(0.0, 1.0), n=700)
+            for rpm in range(22, 25):
+                write_speed(docs, "one", rpm, -0.097)
+            out = docs / "slip"
+            self.assertEqual(slip.main(["--study", "one", "one", "--docs", d, "--out", str(out)]), 0)
+            called, compared = slip.null_rate(docs, "study_thesis", 1.45, 0.5, 3, 0.05)  # (runs of 30 samples)
+            self.assertIn(f"called {called} of {compared} piece-to-piece comparisons a change", out.with_suffix(".md").read_text())
+            self.assertEqual(slip.main(["--study", "one", "one", "--null", "-", "--docs", d, "--out", str(out)]), 0)
+            self.assertNotIn("piece-to-piece", out.with_suffix(".md").read_text())
+
+
     def test_batch_means(self):
         mean, se = slip.batch_means([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 3)  # batch means 1.5, 3.5, 5.5
         self.assertAlmostEqual(mean, 3.5)

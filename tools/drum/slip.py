@@ -74,6 +74,35 @@ def study_speeds(docs, name, window, batches):
     return out
 
 
+def null_rate(docs, name, block_s, window, batches, alpha):
+    """This reading where nothing changes: each speed of the steady study `name` (docs/drum/NAME/
+    <rpm>rpm/, from its steady start) cut into consecutive pieces of block_s seconds, each piece
+    read as a slip speed is (its last `window`, `batches` batch means), consecutive pieces set
+    against each other as steps are. Returns (changes called, comparisons): the false-alarm rate
+    on the drum's own fluctuations, where the stated one (alpha per comparison) assumes
+    independent batch means."""
+    called = compared = 0
+    for folder in sorted((docs / name).glob("*rpm")):
+        series_path, average_path = folder / "series_metrics.csv", folder / "series_average.csv"
+        if not (series_path.exists() and average_path.exists()):
+            continue
+        start = float(harness.read_csv(average_path)[0]["steady_from_s"])
+        series = [r for r in harness.read_csv(series_path) if float(r["time_s"]) >= start - 1e-9]
+        if len(series) < 2:
+            continue
+        step = statistics.median(float(b["time_s"]) - float(a["time_s"]) for a, b in zip(series, series[1:]))
+        n = max(2, round(block_s / step) + 1)  # samples per piece: a run of block_s spans n - 1 steps
+        pieces = [window_average(series[k * n:(k + 1) * n], window, batches) for k in range(len(series) // n)]
+        for a, b in zip(pieces, pieces[1:]):
+            for _, col, _, _, _ in METRICS:
+                (xa, sa), (xb, sb) = a[col], b[col]
+                verdict, _ = change(xa, sa, batches, xb, sb, batches, alpha)
+                if verdict != "?":
+                    compared += 1
+                    called += verdict != "no change"
+    return called, compared
+
+
 def start_row(docs, spec):
     """--start NAME:RPM: that speed's steady averages from docs/drum/NAME.csv as the first point."""
     name, rpm = spec.split(":")
@@ -126,13 +155,24 @@ def first_drop(step_rows):
     return None
 
 
-def markdown(studies, window, batches, alpha, command):
+def markdown(studies, window, batches, alpha, command, null=None):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
              f"where it passes a two-sided Welch t-test at {alpha:g} (per comparison: about {alpha:g} of the "
              "steps without a change read as one). The first row of a study may be the steady speed it "
              "started from (its averages over whole revolutions).", ""]
+    if null:
+        name, block_s, (called, compared) = null
+        rate = called / compared if compared else float("nan")
+        # (more than twice the stated rate: the batch means are not independent at this length)
+        reading = ("make this reading see changes MORE often than it states: its steps overstate their "
+                   "significance" if rate > 2 * alpha else "do not make this reading see changes more often "
+                   "than it states")
+        lines += [f"Where nothing changes: the steady series of `{name}` (every speed, from its steady start) "
+                  f"cut into consecutive pieces of {block_s:g} s, each read as a speed is here, called "
+                  f"{called} of {compared} piece-to-piece comparisons a change ({rate:.1%}; stated: "
+                  f"{alpha:.0%}). The drum's own fluctuations {reading}.", ""]
     for label, speeds in studies:
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
@@ -188,6 +228,9 @@ def main(argv=None):
     p.add_argument("--window", type=float, default=0.5, help="the last fraction of each run averaged (default: %(default)s)")
     p.add_argument("--batches", type=int, default=3, help="batches for the standard error (default: %(default)s)")
     p.add_argument("--alpha", type=float, default=0.05, help="two-sided test level per step (default: %(default)s)")
+    p.add_argument("--null", default="study_thesis", metavar="NAME",
+                   help="a steady study whose series, cut into pieces as long as the slip speeds' runs, give "
+                        "this reading's false-alarm rate where nothing changes ('-': none; default: %(default)s)")
     p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"), help="(default: docs/drum)")
     p.add_argument("--out", default=str(harness.REPO / "docs" / "drum" / "slip_test"),
                    help="OUT.md, OUT.csv, OUT.png (default: docs/drum/slip_test)")
@@ -205,10 +248,16 @@ def main(argv=None):
     except harness.RunFailed as e:
         harness.say("slip", f"ERROR: {e}")
         return 1
+    null = None
+    runs = [seconds for _, speeds in studies for _, _, seconds, _ in speeds if math.isfinite(seconds)]
+    if a.null != "-" and runs and (docs / a.null).is_dir():
+        block = statistics.median(runs)
+        null = (a.null, block, null_rate(docs, a.null, block, a.window, a.batches, a.alpha))
     out = Path(a.out)
     command = "tools/drum/slip.py " + " ".join(f"--study {n} '{l}'" for n, l in a.study) + "".join(
-        f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}"
-    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command))
+        f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
+        f" --null {a.null}" if a.null != "study_thesis" else "")
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null))
     rows = []
     for label, speeds in studies:
         for rpm, avg, seconds, batches in speeds:
