@@ -74,7 +74,7 @@ class Histories(unittest.TestCase):
                          for _ in range(n))
             self.assertLess(abs(caught / n - 0.8), 4 * math.sqrt(0.16 / n), (batches_a, batches_b, caught / n))
         # at 3 batches a side the estimated SEs and degrees of freedom cost power: the figure lies
-        # well above what a noncentral t at the pooled 4 degrees of freedom gives (6.7 SEs)
+        # well above what a noncentral t at the pooled 4 degrees of freedom gives (6.4 SEs over 7 metrics)
         self.assertGreater(histories.detectable(1, 3, 1, 3, critical) / math.sqrt(2), 8.0)
 
     def test_compare_gives_the_detectable_difference_when_asked(self):
@@ -84,6 +84,14 @@ class Histories(unittest.TestCase):
         rows = histories.compare(a, b, METRICS, power=0.8)
         self.assertTrue(all(r["detectable"] > 3 * r["combined_se"] for r in rows))
         self.assertTrue(math.isnan(histories.detectable(1.0, 1, 1.0, 5, lambda d: 2.0)))  # one batch: no SE
+        # with the Bonferroni count of the metrics compared (6 of the 7: one left out), at the power asked
+        from scipy import stats
+        b["m3_u"] = float("nan")
+        rows = histories.compare(a, b, METRICS, power=0.5)
+        critical = lambda dof: stats.t.ppf(1 - 0.05 / 12, dof)  # noqa: E731
+        self.assertEqual(rows[0]["detectable"],
+                         histories.detectable(a["m0_se_u"], 5, b["m0_se_u"], 5, critical, 0.5))
+        self.assertLess(rows[0]["detectable"], histories.compare(a, b, METRICS, power=0.8)[0]["detectable"])
 
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)

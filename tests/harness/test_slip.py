@@ -15,6 +15,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 import slip  # noqa: E402
+import numpy as np  # noqa: E402
+from scipy import stats  # noqa: E402
 
 COLUMNS = ["time_s", "Hh_m", "Hc_m", "angle_deg", "bed_turn_1", "wall_roll_1", "wall_slip_1"]
 
@@ -52,27 +54,54 @@ def write_steady(docs, name, rpm, noise, n=3000, start=5.0):
 
 class Slip(unittest.TestCase):
     def test_false_alarms_where_nothing_changes(self):
+        # the reference: Welch's test on 3 against 3 independent normal batch means at 0.05, by an
+        # independent simulation (numpy, 400,000 pairs): 3.45 % -- below 5 %, as Welch's estimated
+        # degrees of freedom make it at few batches
+        rng = np.random.default_rng(1)
+        a, b = rng.normal(size=(400000, 3)), rng.normal(size=(400000, 3))
+        sa, sb = a.std(axis=1, ddof=1) / math.sqrt(3), b.std(axis=1, ddof=1) / math.sqrt(3)
+        dof = (sa ** 2 + sb ** 2) ** 2 / (sa ** 4 / 2 + sb ** 4 / 2)
+        reference = np.mean(np.abs(a.mean(axis=1) - b.mean(axis=1)) > stats.t.ppf(0.975, dof) * np.hypot(sa, sb))
         with tempfile.TemporaryDirectory() as d:
             docs = Path(d)
-            rng = random.Random(5)
-            write_steady(docs, "white", 21, lambda: rng.gauss(0.0, 1.0))
-            # the steady part cut into pieces of 1.45 s (30 samples, as a 1.5 s slip speed's series):
-            # (3000 - 100) / 30 = 96 pieces, 95 steps, 6 metrics
-            called, compared = slip.null_rate(docs, "white", 1.45, 0.5, 3, 0.05)
-            self.assertEqual(compared, 95 * 6)
-            # independent batch means: 0.05 per comparison, within 4 binomial sd (0.036)
-            self.assertLess(abs(called / compared - 0.05), 4 * math.sqrt(0.05 * 0.95 / compared), called / compared)
+            noise = random.Random(5)
+            write_steady(docs, "white", 21, lambda: noise.gauss(0.0, 1.0), n=30000)
+            # the steady part (from 5 s) cut into pieces of 1.5 s: 31 samples, as a 1.5 s slip speed's
+            # series (its start state included): 29900 // 31 = 964 pieces, 963 pairs, 6 metrics each
+            found = slip.null_rate(docs, "white", 1.5, 0.5, 3, 0.05)
+            called, compared, pairs = found.counts()
+            self.assertEqual((compared, pairs), (963 * 6, 963))
+            # within 4 binomial sd of the reference, the variance doubled for the pieces two
+            # consecutive pairs share (0.0136): alpha doubled (7-8 %) or a wrong dof (5-6 %) fail
+            sd = math.sqrt(2 * reference * (1 - reference) / compared)
+            self.assertLess(abs(called / compared - reference), 4 * sd, (called / compared, reference))
+            rate, low, high = found.interval()
+            self.assertLess(low, reference)
+            self.assertGreater(high, reference)
             # noise correlated over many samples (AR(1), 0.95 per 0.05 s: about 1 s) makes the 0.25 s
             # batch means of one window alike, their SE far too small: the check must see that
             state = [0.0] * 6
             def correlated(box=[0]):  # noqa: B006 (one AR(1) chain per metric, metrics in turn)
                 i = box[0] % 6
                 box[0] += 1
-                state[i] = 0.95 * state[i] + math.sqrt(1 - 0.95 ** 2) * rng.gauss(0.0, 1.0)
+                state[i] = 0.95 * state[i] + math.sqrt(1 - 0.95 ** 2) * noise.gauss(0.0, 1.0)
                 return state[i]
             write_steady(docs, "correlated", 21, correlated)
-            called, compared = slip.null_rate(docs, "correlated", 1.45, 0.5, 3, 0.05)
-            self.assertGreater(called / compared, 0.2, called / compared)
+            found = slip.null_rate(docs, "correlated", 1.5, 0.5, 3, 0.05)
+            rate, low, high = found.interval()
+            self.assertGreater(low, 0.1, (rate, low, high))
+
+    def test_the_interval_counts_correlated_metrics_as_fewer(self):
+        # six metrics that always agree are one comparison per pair: the interval as wide as the
+        # pairs' own; none called: a pair counts as one comparison
+        alike = slip.NullRate([(21.0, 6 if k % 10 == 0 else 0, 6) for k in range(100)])
+        one = slip.NullRate([(21.0, 1 if k % 10 == 0 else 0, 1) for k in range(100)])
+        self.assertAlmostEqual(alike.interval()[2], one.interval()[2], places=6)
+        self.assertAlmostEqual(alike.interval()[1], one.interval()[1], places=6)
+        none = slip.NullRate([(28.0, 0, 6)] * 17)
+        self.assertAlmostEqual(none.interval()[2], 1 - 0.025 ** (1 / 17), places=9)
+        self.assertEqual(none.interval(21, 35)[:2], (0.0, 0.0))
+        self.assertTrue(math.isnan(none.interval(40, 60)[0]))
 
     def test_the_report_states_the_false_alarm_rate(self):
         with tempfile.TemporaryDirectory() as d:
@@ -83,11 +112,12 @@ class Slip(unittest.TestCase):
                 write_speed(docs, "one", rpm, -0.097)
             out = docs / "slip"
             self.assertEqual(slip.main(["--study", "one", "one", "--docs", d, "--out", str(out)]), 0)
-            called, compared = slip.null_rate(docs, "study_thesis", 1.45, 0.5, 3, 0.05)  # (runs of 30 samples)
-            self.assertIn(f"called {called} of {compared} piece-to-piece comparisons a change", out.with_suffix(".md").read_text())
+            called, compared, pairs = slip.null_rate(docs, "study_thesis", 1.45, 0.5, 3, 0.05).counts()  # (runs of 30 samples)
+            text = out.with_suffix(".md").read_text()
+            self.assertIn(f"every speed: {called} of {compared} (", text)
+            self.assertIn("calls changes no more often than it states", text)
             self.assertEqual(slip.main(["--study", "one", "one", "--null", "-", "--docs", d, "--out", str(out)]), 0)
-            self.assertNotIn("piece-to-piece", out.with_suffix(".md").read_text())
-
+            self.assertNotIn("Where nothing changes", out.with_suffix(".md").read_text())
 
     def test_batch_means(self):
         mean, se = slip.batch_means([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 3)  # batch means 1.5, 3.5, 5.5

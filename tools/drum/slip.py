@@ -74,15 +74,50 @@ def study_speeds(docs, name, window, batches):
     return out
 
 
+class NullRate:
+    """What null_rate found: per speed, the changes called and the comparisons made at each pair of
+    consecutive pieces."""
+
+    def __init__(self, pairs):
+        self.pairs = pairs  # [(rpm, called, compared)], one per pair of consecutive pieces
+
+    def counts(self, lo=-math.inf, hi=math.inf):
+        chosen = [(c, n) for rpm, c, n in self.pairs if lo <= rpm <= hi]
+        return sum(c for c, _ in chosen), sum(n for _, n in chosen), len(chosen)
+
+    def interval(self, lo=-math.inf, hi=math.inf):
+        """(rate, low, high): the rate of changes called with a 95 % Clopper-Pearson interval on the
+        effective number of comparisons. A pair of pieces' metrics are correlated (Hc with the angle
+        about 0.7, with the head 0.5), so the comparisons count as fewer: divided by the design
+        effect, the variance of the calls per pair over the binomial one, at least 1; with no
+        change called that variance is unknown and a pair counts as one comparison (its metrics
+        taken as one), the cautious end."""
+        called, compared, pairs = self.counts(lo, hi)
+        if not compared:
+            return float("nan"), float("nan"), float("nan")
+        rate = called / compared
+        per_pair = compared / pairs
+        if called == 0 or pairs < 2:
+            effect = per_pair
+        else:
+            residuals = [c - rate * n for rpm, c, n in self.pairs if lo <= rpm <= hi]
+            effect = statistics.pvariance(residuals) / (rate * (1.0 - rate) * per_pair) if rate < 1.0 else 1.0
+        n = compared / max(effect, 1.0)
+        x = rate * n
+        low = stats.beta.ppf(0.025, x, n - x + 1) if x > 0 else 0.0
+        high = stats.beta.ppf(0.975, x + 1, n - x) if x < n else 1.0
+        return rate, float(low), float(high)
+
+
 def null_rate(docs, name, block_s, window, batches, alpha):
     """This reading where nothing changes: each speed of the steady study `name` (docs/drum/NAME/
     <rpm>rpm/, from its steady start) cut into consecutive pieces of block_s seconds, each piece
     read as a slip speed is (its last `window`, `batches` batch means), consecutive pieces set
-    against each other as steps are. Returns (changes called, comparisons): the false-alarm rate
-    on the drum's own fluctuations, where the stated one (alpha per comparison) assumes
-    independent batch means."""
-    called = compared = 0
-    for folder in sorted((docs / name).glob("*rpm")):
+    against each other as steps are: the false-alarm rate on the drum's own fluctuations, where the
+    stated one (alpha per comparison) assumes independent batch means. (A slip speed's window also
+    holds what is left of its step's transient; steady pieces have none.)"""
+    pairs = []
+    for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
         series_path, average_path = folder / "series_metrics.csv", folder / "series_average.csv"
         if not (series_path.exists() and average_path.exists()):
             continue
@@ -94,13 +129,15 @@ def null_rate(docs, name, block_s, window, batches, alpha):
         n = max(2, round(block_s / step) + 1)  # samples per piece: a run of block_s spans n - 1 steps
         pieces = [window_average(series[k * n:(k + 1) * n], window, batches) for k in range(len(series) // n)]
         for a, b in zip(pieces, pieces[1:]):
+            called = compared = 0
             for _, col, _, _, _ in METRICS:
                 (xa, sa), (xb, sb) = a[col], b[col]
                 verdict, _ = change(xa, sa, batches, xb, sb, batches, alpha)
                 if verdict != "?":
                     compared += 1
                     called += verdict != "no change"
-    return called, compared
+            pairs.append((float(folder.name[:-3]), called, compared))
+    return NullRate(pairs)
 
 
 def start_row(docs, spec):
@@ -163,16 +200,23 @@ def markdown(studies, window, batches, alpha, command, null=None):
              "steps without a change read as one). The first row of a study may be the steady speed it "
              "started from (its averages over whole revolutions).", ""]
     if null:
-        name, block_s, (called, compared) = null
-        rate = called / compared if compared else float("nan")
-        # (more than twice the stated rate: the batch means are not independent at this length)
-        reading = ("make this reading see changes MORE often than it states: its steps overstate their "
-                   "significance" if rate > 2 * alpha else "do not make this reading see changes more often "
-                   "than it states")
-        lines += [f"Where nothing changes: the steady series of `{name}` (every speed, from its steady start) "
-                  f"cut into consecutive pieces of {block_s:g} s, each read as a speed is here, called "
-                  f"{called} of {compared} piece-to-piece comparisons a change ({rate:.1%}; stated: "
-                  f"{alpha:.0%}). The drum's own fluctuations {reading}.", ""]
+        name, block_s, found = null
+        text = []
+        for what, lo, hi in (("every speed", -math.inf, math.inf), ("21-35 rpm, the slip's range", 21.0, 35.0)):
+            called, compared, pairs = found.counts(lo, hi)
+            rate, low, high = found.interval(lo, hi)
+            if compared:
+                text.append(f"{what}: {called} of {compared} ({rate:.1%}, 95 % interval {low:.1%}-{high:.1%} over "
+                            f"{pairs} pairs of pieces)")
+        rate, low, high = found.interval()
+        reading = ("MORE often than it states: its steps overstate their significance" if low > alpha else
+                   f"no more often than it states, within the interval (up to {high:.0%})")
+        lines += [f"Where nothing changes: the steady series of `{name}` (each speed from its steady start) cut "
+                  f"into consecutive pieces of {block_s:g} s, each read as a speed is here, consecutive pieces "
+                  f"compared as steps are; changes called, stated {alpha:.0%} per comparison: "
+                  + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
+                  "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
+                  ""]
     for label, speeds in studies:
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
