@@ -21,33 +21,36 @@ from scipy import stats  # noqa: E402
 COLUMNS = ["time_s", "Hh_m", "Hc_m", "angle_deg", "bed_turn_1", "wall_roll_1", "wall_slip_1"]
 
 
-def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
-    """A speed's series: a transient in its first half (which the window leaves out), then Hc
-    alternating +-0.1 mm about `hc`: batch means of 5 over the last 15 snapshots are exact."""
+def write_series(docs, name, rpm, rows):
+    """docs/NAME/<rpm>rpm/series_metrics.csv with these rows (COLUMNS); returns the folder."""
     folder = docs / name / f"{rpm}rpm"
     folder.mkdir(parents=True)
     with open(folder / "series_metrics.csv", "w", newline="") as f:
         w = csv.DictWriter(f, COLUMNS)
         w.writeheader()
-        for k in range(n):
-            wobble = 1e-4 * (1 if k % 2 else -1)
-            transient = 5e-3 if k < n // 2 else 0.0
-            w.writerow({"time_s": 0.05 * k, "Hh_m": 0.09 + hc, "Hc_m": hc + wobble + transient, "angle_deg": 30.0,
-                        "bed_turn_1": turn, "wall_roll_1": 0.02, "wall_slip_1": 0.002})
+        w.writerows(rows)
+    return folder
+
+
+def write_speed(docs, name, rpm, hc, turn=1.0, n=30):
+    """A speed's series: a transient in its first half (which the window leaves out), then Hc
+    alternating +-0.1 mm about `hc`: batch means of 5 over the last 15 snapshots are exact."""
+    rows = []
+    for k in range(n):
+        wobble = 1e-4 * (1 if k % 2 else -1)
+        transient = 5e-3 if k < n // 2 else 0.0
+        rows.append({"time_s": 0.05 * k, "Hh_m": 0.09 + hc, "Hc_m": hc + wobble + transient, "angle_deg": 30.0,
+                     "bed_turn_1": turn, "wall_roll_1": 0.02, "wall_slip_1": 0.002})
+    write_series(docs, name, rpm, rows)
 
 
 def write_steady(docs, name, rpm, noise, n=3000, start=5.0):
     """A steady speed of a steady study: samples every 0.05 s from t = 0, steady from `start`
     (series_average.csv), Hc and the others drawn by noise(k) about fixed values."""
-    folder = docs / name / f"{rpm}rpm"
-    folder.mkdir(parents=True)
-    with open(folder / "series_metrics.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, COLUMNS)
-        w.writeheader()
-        for k in range(n):
-            w.writerow({"time_s": 0.05 * k, "Hh_m": 0.09 + 1e-4 * noise(), "Hc_m": -0.097 + 1e-4 * noise(),
-                        "angle_deg": 30.0 + 0.1 * noise(), "bed_turn_1": 0.99 + 1e-3 * noise(),
-                        "wall_roll_1": 0.02 + 1e-3 * noise(), "wall_slip_1": 0.002 + 1e-4 * noise()})
+    folder = write_series(docs, name, rpm, [
+        {"time_s": 0.05 * k, "Hh_m": 0.09 + 1e-4 * noise(), "Hc_m": -0.097 + 1e-4 * noise(),
+         "angle_deg": 30.0 + 0.1 * noise(), "bed_turn_1": 0.99 + 1e-3 * noise(),
+         "wall_roll_1": 0.02 + 1e-3 * noise(), "wall_slip_1": 0.002 + 1e-4 * noise()} for k in range(n)])
     with open(folder / "series_average.csv", "w", newline="") as f:
         f.write(f"rpm,steady_from_s\n{rpm},{start}\n")
 

@@ -45,19 +45,18 @@ def detectable(se_a, batches_a, se_b, batches_b, critical_of, power=0.8, replica
     with n - 1 degrees of freedom), Welch's degrees of freedom and critical t from them
     (`critical_of(dof)`), so its power is the procedure's -- lower at few batches than a noncentral
     t at the pooled degrees of freedom says (3 batches a side, 10 metrics: 0.54 instead of 0.8)."""
-    if not (batches_a >= 2 and batches_b >= 2 and math.hypot(se_a, se_b) > 0):
+    scale = math.hypot(se_a, se_b)
+    if not (batches_a >= 2 and batches_b >= 2 and scale > 0):
         return float("nan")
     rng = np.random.default_rng(20261204)
     na, nb = int(batches_a) - 1, int(batches_b) - 1
     ea = se_a * np.sqrt(rng.chisquare(na, replicas) / na)
     eb = se_b * np.sqrt(rng.chisquare(nb, replicas) / nb)
-    noise = rng.normal(0.0, math.hypot(se_a, se_b), replicas)
-    se = np.hypot(ea, eb)
+    noise = rng.normal(0.0, scale, replicas)
     with np.errstate(invalid="ignore", divide="ignore"):
         dof = (ea ** 2 + eb ** 2) ** 2 / (ea ** 4 / na + eb ** 4 / nb)
-    limit = critical_of(dof) * se
+    limit = critical_of(dof) * np.hypot(ea, eb)
     caught = lambda delta: np.mean(np.abs(delta + noise) > limit) - power  # noqa: E731
-    scale = math.hypot(se_a, se_b)
     hi = scale
     while caught(hi) < 0.0 and hi < 1e4 * scale:
         hi *= 2.0
@@ -69,19 +68,19 @@ def compare(a, b, metrics, alpha=0.05, power=None):
     combined SE, t, the degrees of freedom, the critical t and whether they agree; with `power`,
     also the difference the check would catch with that probability (`detectable`)."""
     usable = [m for m in metrics if all(math.isfinite(r[c]) for r in (a, b) for c in (m["column"], m["se_column"]))]
+    critical_of = lambda dof: stats.t.ppf(1 - alpha / (2 * len(usable)), dof)  # noqa: E731 (Bonferroni)
     rows = []
     for m in usable:
         va, sa, vb, sb = a[m["column"]], a[m["se_column"]], b[m["column"]], b[m["se_column"]]
         se = math.hypot(sa, sb)
         dof = welch_dof(sa, a["batches"], sb, b["batches"])
-        critical = stats.t.ppf(1 - alpha / (2 * len(usable)), dof) if math.isfinite(dof) else float("nan")
+        critical = critical_of(dof) if math.isfinite(dof) else float("nan")
         t = (va - vb) / se if se > 0 else float("inf") if va != vb else 0.0
         rows.append({"metric": m["label"], "unit": m["unit"], "a": va, "se_a": sa, "b": vb, "se_b": sb,
                      "difference": va - vb, "combined_se": se, "t": t, "dof": dof, "critical_t": critical,
                      "agree": abs(t) <= critical})
         if power is not None:
-            rows[-1]["detectable"] = detectable(sa, a["batches"], sb, b["batches"],
-                                                lambda d: stats.t.ppf(1 - alpha / (2 * len(usable)), d), power)
+            rows[-1]["detectable"] = detectable(sa, a["batches"], sb, b["batches"], critical_of, power)
     return rows
 
 

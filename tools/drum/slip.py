@@ -127,16 +127,13 @@ def null_rate(docs, name, block_s, window, batches, alpha):
             continue
         step = statistics.median(float(b["time_s"]) - float(a["time_s"]) for a, b in zip(series, series[1:]))
         n = max(2, round(block_s / step) + 1)  # samples per piece: a run of block_s spans n - 1 steps
-        pieces = [window_average(series[k * n:(k + 1) * n], window, batches) for k in range(len(series) // n)]
-        for a, b in zip(pieces, pieces[1:]):
-            called = compared = 0
-            for _, col, _, _, _ in METRICS:
-                (xa, sa), (xb, sb) = a[col], b[col]
-                verdict, _ = change(xa, sa, batches, xb, sb, batches, alpha)
-                if verdict != "?":
-                    compared += 1
-                    called += verdict != "no change"
-            pairs.append((float(folder.name[:-3]), called, compared))
+        # the pieces as speeds, read by the steps' own reading (one row per metric and pair)
+        pieces = [(k, window_average(series[k * n:(k + 1) * n], window, batches), float("nan"), batches)
+                  for k in range(len(series) // n)]
+        rows = steps(pieces, alpha)
+        for k in range(0, len(rows), len(METRICS)):
+            verdicts = [row[3] for row in rows[k:k + len(METRICS)] if row[3] != "?"]
+            pairs.append((float(folder.name[:-3]), sum(v != "no change" for v in verdicts), len(verdicts)))
     return NullRate(pairs)
 
 
@@ -208,7 +205,7 @@ def markdown(studies, window, batches, alpha, command, null=None):
             if compared:
                 text.append(f"{what}: {called} of {compared} ({rate:.1%}, 95 % interval {low:.1%}-{high:.1%} over "
                             f"{pairs} pairs of pieces)")
-        rate, low, high = found.interval()
+        rate, low, high = found.interval()  # (every speed's, for the verdict)
         reading = ("MORE often than it states: its steps overstate their significance" if low > alpha else
                    f"no more often than it states, within the interval (up to {high:.0%})")
         lines += [f"Where nothing changes: the steady series of `{name}` (each speed from its steady start) cut "
