@@ -15,16 +15,17 @@
 # 3. The slip test (Fig. 3.5-3.6): the speed raised from 21 rpm one rpm at a time, 1.5 s per speed
 #    (21 -> 28 in 10.5 s: the thesis' ramp took 1e7 steps, about 12 s), on to 35 rpm, where the
 #    chain's bed no longer turns with the drum; from the chain's carried 21 rpm bed with the
-#    thesis' table (bead-drum mu 0.95), read by tools/drum/slip.py at once; after step 4, with
-#    YADE 1.12's conventions (mu 0.5, facet meff m/2, no attraction: exactRestitution contradicts
-#    them, so the nominal law at tc/10) from 21 rpm steady under them (study_yade, which then goes
-#    on to 28 and 35 rpm), and slip.py reads both. Each slip speed is one segment:
-#    --checkpoint-now keeps nothing of one under way (at most 1.5 s simulated is redone).
+#    thesis' table (bead-drum mu 0.95), read by tools/drum/slip.py at once; then with YADE 1.12's
+#    conventions (mu 0.5, facet meff m/2, no attraction: exactRestitution contradicts them, so the
+#    nominal law at tc/10) from 21 rpm steady under them (study_yade), and slip.py reads both.
+#    Each slip speed is one segment: --checkpoint-now keeps nothing of one under way (at most
+#    1.5 s simulated is redone). The slip question comes before step 4: it is the study's answer.
 # 4. The thesis' chain again from the grid with the stop rule recommended for new studies
 #    (--min-batches 3 --confidence 0.95): the time to the target as the driver achieves it (the
 #    report's figure for it so far is a replay on study_thesis), and from 14 rpm on a second history
 #    of each speed (each starts from a state study_thesis did not pass through), set against
-#    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
+#    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/). Then study_yade goes
+#    on to 28 and 35 rpm.
 # 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
 #    (1.23e-6 s) with the nominal law, to a steady state (3 revolutions at least: tc/81 costs 16
 #    times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
@@ -73,6 +74,19 @@ if [[ ${#now[@]} -eq 0 && ! -e docs/drum/study_yade/21rpm/state.restart.gz ]]; t
   save "Drum: the slip test at thesis scale, the thesis' table" docs/drum/slip_test.md docs/drum/slip_test.csv \
     docs/drum/slip_test.png
 fi
+steady --name study_yade --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+  "${yade[@]}" --segment 2 --cap 40
+if ready docs/drum/study_yade/21rpm/state.restart.gz; then
+  steady --name slip_yade --speeds "$slip_speeds" --start-state docs/drum/study_yade/21rpm/state.restart.gz \
+    "${yade[@]}" --segment 1.5 --cap 1.5
+fi
+if [[ ${#now[@]} -eq 0 ]]; then
+  "$py" tools/drum/slip.py \
+    --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
+    --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" --start study_yade:21 \
+    --out docs/drum/slip_test
+  save "Drum: the slip test at thesis scale" docs/drum/slip_test.md docs/drum/slip_test.csv docs/drum/slip_test.png
+fi
 steady --name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
@@ -82,20 +96,9 @@ if [[ ${#now[@]} -eq 0 ]]; then
   done
   save "Drum: study_thesis against study_bound, speed by speed" docs/drum/histories_bound
 fi
-steady --name study_yade --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-  "${yade[@]}" --segment 2 --cap 40
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
-  steady --name slip_yade --speeds "$slip_speeds" --start-state docs/drum/study_yade/21rpm/state.restart.gz \
-    "${yade[@]}" --segment 1.5 --cap 1.5
   steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     "${yade[@]}" --segment 2 --cap 40
-fi
-if [[ ${#now[@]} -eq 0 ]]; then
-  "$py" tools/drum/slip.py \
-    --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
-    --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" --start study_yade:21 \
-    --out docs/drum/slip_test
-  save "Drum: the slip test at thesis scale" docs/drum/slip_test.md docs/drum/slip_test.csv docs/drum/slip_test.png
 fi
 for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
   IFS=: read -r step label segment <<< "$dt"
