@@ -150,6 +150,10 @@ class Slip(unittest.TestCase):
             self.assertIn("## rises\n\n**27 → 28 rpm: Hc rises** (+0.50 mm", text)
             self.assertIn("## slips\n\n**27 → 28 rpm: Hc drops** (-2.50 mm", text)
             self.assertIn("First drop of Hc along the steps: 27 → 28 rpm", text)
+            # the question answered for the two together: one drops, the other not, and they differ
+            self.assertIn("**Hc drops between 27 and 28 rpm with slips and not with rises.** The two steps differ: "
+                          "slips minus rises, -3.00 ±", text)
+            self.assertIn("- slips: Hc drops, -2.50 ±", text)
             self.assertEqual(text.count("First drop"), 1)
             # the windows leave the transient out: Hc within round-off of the set value
             speeds = slip.study_speeds(docs, "slips", 0.5, 3)
@@ -186,6 +190,39 @@ class Slip(unittest.TestCase):
         self.assertGreater(called(0.0), 0.02)  # (Welch is slightly conservative: 3.6-5 % seen)
         # batch means of 5 iid values: sd 1/sqrt(5); their means' se 1/sqrt(15); combined sqrt(2/15)
         self.assertGreater(called(5.0 * math.sqrt(2.0 / 15.0), 500), 0.75)
+
+    def test_the_stated_catchable_drop_is_caught_four_times_in_five(self):
+        # the figure the report gives for a step ("a drop of X mm would be caught with 80 %
+        # probability"), for windows of white noise: batch means of 5 values, se 1/sqrt(15) a side;
+        # stepping them by X, the step's own test calls 0.8 of the pairs a change (binomial sd 0.009
+        # over 2000 pairs; X is 4.28 combined errors: stated with a Bonferroni critical over the 6
+        # metrics it would be caught 0.999 of the time, with the normal's 1.96 + 0.84 errors 0.46)
+        rng = random.Random(11)
+        se = 1.0 / math.sqrt(15.0)
+        drop = slip.catchable((se, 3, se, 3), 0.05)
+
+        def window(mean):
+            rows = [{c: 0.0 for c in COLUMNS} for _ in range(30)]
+            for r in rows:
+                r["Hc_m"] = mean + rng.gauss(0.0, 1.0)
+            return slip.window_average(rows, 0.5, 3)["Hc_m"]
+
+        n = 0
+        for _ in range(2000):
+            (xa, sa), (xb, sb) = window(0.0), window(-drop)
+            n += slip.change(xa, sa, 3, xb, sb, 3, 0.05)[0] == "drops"
+        self.assertAlmostEqual(n / 2000, 0.8, delta=0.035)
+
+    def test_two_conventions_steps_compared(self):
+        # changes +1 and -1 with every batch error 0.1 (3 batches a side): the difference -2 has
+        # the combined error 0.2 and Satterthwaite's 8 degrees of freedom (four equal parts of 2)
+        x = (1.0, math.hypot(0.1, 0.1), (0.1, 3, 0.1, 3))
+        y = (-1.0, math.hypot(0.1, 0.1), (0.1, 3, 0.1, 3))
+        difference, critical = slip.contrast(x, y, 0.05)
+        self.assertEqual(difference, -2.0)
+        self.assertAlmostEqual(critical, stats.t.ppf(0.975, 8) * 0.2, places=12)
+        # a speed with a single batch has no error estimate: no verdict
+        self.assertTrue(math.isnan(slip.contrast(x, (0.0, 0.1, (0.1, 1, 0.0, 3)), 0.05)[1]))
 
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:

@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
-from histories import welch_dof  # noqa: E402
+from histories import detectable, welch_dof  # noqa: E402
 from scipy import stats  # noqa: E402
 
 # (label, column, scale, unit, digits) of the metrics compared
@@ -181,6 +181,65 @@ def answer(step_rows, a=27.0, b=28.0):
     return None
 
 
+def step_change(speeds, col, a=27.0, b=28.0):
+    """(b - a, its standard error, the pair's se and batches) of one metric between two speeds of a
+    study; None where the study lacks either speed."""
+    found = {rpm: (avg[col], n) for rpm, avg, _, n in speeds}
+    if a not in found or b not in found:
+        return None
+    ((xa, sa), na), ((xb, sb), nb) = found[a], found[b]
+    return xb - xa, math.hypot(sa, sb), (sa, na, sb, nb)
+
+
+def catchable(parts, alpha, power=0.8):
+    """The true change a step's test (two-sided Welch at alpha) catches with probability `power`."""
+    sa, na, sb, nb = parts
+    return detectable(sa, na, sb, nb, lambda dof: stats.t.ppf(1.0 - alpha / 2.0, dof), power)
+
+
+def contrast(x, y, alpha):
+    """Whether two studies' changes at one step differ: (difference, critical difference) by a
+    two-sided Welch test at alpha on the four batch-mean errors (Satterthwaite's degrees of freedom);
+    x, y as step_change gives them."""
+    (dx, sx, (s1, n1, s2, n2)), (dy, sy, (s3, n3, s4, n4)) = x, y
+    se = math.hypot(sx, sy)
+    parts = [(s, n - 1) for s, n in ((s1, n1), (s2, n2), (s3, n3), (s4, n4))]
+    if not se > 0 or any(d < 1 for _, d in parts):
+        return dy - dx, float("nan")
+    dof = se ** 4 / sum(s ** 4 / d for s, d in parts)
+    return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
+
+
+def answer_section(studies, alpha):
+    """The issue's question for two sets of conventions: does Hc drop between 27 and 28 rpm with
+    one and not the other, and do their steps differ beyond their errors?"""
+    found = [(label, step_change(speeds, "Hc_m")) for label, speeds in studies]
+    found = [(label, got) for label, got in found if got]
+    if len(found) < 2:
+        return []
+    lines = ["## Answer: 27 → 28 rpm", ""]
+    verdicts = []
+    for label, (diff, se, parts) in found:
+        verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
+        verdicts.append((label, verdict))
+        lines.append(f"- {label}: Hc {verdict}, {diff * 1e3:+.2f} ± {critical * 1e3:.2f} mm (95 % interval of the "
+                     f"change); a drop of {catchable(parts, alpha) * 1e3:.2f} mm would be caught with 80 % probability.")
+    drops = [label for label, v in verdicts if v == "drops"]
+    (la, a), (lb, b) = found[0], found[1]
+    difference, critical = contrast(a, b, alpha)
+    if len(drops) == 1:
+        other = next(label for label, _ in found if label != drops[0])
+        summary = f"Hc drops between 27 and 28 rpm with {drops[0]} and not with {other}."
+    elif drops:
+        summary = "Hc drops between 27 and 28 rpm with both."
+    else:
+        summary = "Hc drops between 27 and 28 rpm with neither."
+    differ = ("differ" if math.isfinite(critical) and abs(difference) > critical else "do not differ")
+    lines += ["", f"**{summary}** The two steps {differ}: {lb} minus {la}, {difference * 1e3:+.2f} ± "
+              f"{critical * 1e3:.2f} mm (95 %, Welch on the four speeds' batch errors).", ""]
+    return lines
+
+
 def first_drop(step_rows):
     """The first step at which Hc drops: (from, to, difference, critical), or None."""
     for x, y, label, verdict, diff, critical in step_rows:
@@ -214,13 +273,16 @@ def markdown(studies, window, batches, alpha, command, null=None):
                   + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
                   "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
                   ""]
+    lines += answer_section(studies, alpha)
     for label, speeds in studies:
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
         lines += [f"## {label}", ""]
         if got:
             verdict, diff, critical = got
-            lines += [f"**27 → 28 rpm: Hc {verdict}** ({diff:+.2f} mm; a change counts beyond ±{critical:.2f} mm).", ""]
+            caught = catchable(step_change(speeds, "Hc_m")[2], alpha) * 1e3
+            lines += [f"**27 → 28 rpm: Hc {verdict}** ({diff:+.2f} mm; a change counts beyond ±{critical:.2f} mm; "
+                      f"a drop of {caught:.2f} mm would be caught with 80 % probability).", ""]
         else:
             lines += ["27 → 28 rpm: not run yet.", ""]
         if first:
