@@ -211,32 +211,46 @@ def contrast(x, y, alpha):
 
 
 def answer_section(studies, alpha):
-    """The issue's question for two sets of conventions: does Hc drop between 27 and 28 rpm with
-    one and not the other, and do their steps differ beyond their errors?"""
-    found = [(label, step_change(speeds, "Hc_m")) for label, speeds in studies]
-    found = [(label, got) for label, got in found if got]
+    """The issue's question for two (or more) sets of conventions: does Hc drop between 27 and 28
+    rpm with one and not the other? Each study's step by its own test; "one and not the other"
+    only where the two steps also differ (their contrast): else the runs do not tell the
+    conventions apart at this step, whatever the single tests say."""
+    found = [(label, got) for label, speeds in studies if (got := step_change(speeds, "Hc_m"))]
     if len(found) < 2:
         return []
+    level = f"{1.0 - alpha:.0%}"
     lines = ["## Answer: 27 → 28 rpm", ""]
     verdicts = []
-    for label, (diff, se, parts) in found:
+    for label, (diff, _, parts) in found:
         verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
-        verdicts.append((label, verdict))
-        lines.append(f"- {label}: Hc {verdict}, {diff * 1e3:+.2f} ± {critical * 1e3:.2f} mm (95 % interval of the "
-                     f"change); a drop of {catchable(parts, alpha) * 1e3:.2f} mm would be caught with 80 % probability.")
-    drops = [label for label, v in verdicts if v == "drops"]
-    (la, a), (lb, b) = found[0], found[1]
-    difference, critical = contrast(a, b, alpha)
-    if len(drops) == 1:
-        other = next(label for label, _ in found if label != drops[0])
-        summary = f"Hc drops between 27 and 28 rpm with {drops[0]} and not with {other}."
-    elif drops:
-        summary = "Hc drops between 27 and 28 rpm with both."
-    else:
-        summary = "Hc drops between 27 and 28 rpm with neither."
-    differ = ("differ" if math.isfinite(critical) and abs(difference) > critical else "do not differ")
-    lines += ["", f"**{summary}** The two steps {differ}: {lb} minus {la}, {difference * 1e3:+.2f} ± "
-              f"{critical * 1e3:.2f} mm (95 %, Welch on the four speeds' batch errors).", ""]
+        verdicts.append(verdict)
+        if verdict == "?":
+            lines.append(f"- {label}: no verdict ({diff * 1e3:+.2f} mm, but a speed without error bars).")
+        else:
+            lines.append(f"- {label}: Hc {verdict}, {diff * 1e3:+.2f} ± {critical * 1e3:.2f} mm ({level} interval of "
+                         f"the change); a drop of {catchable(parts, alpha) * 1e3:.2f} mm would be caught with 80 % "
+                         "probability.")
+    lines.append("")
+    for i in range(len(found)):
+        for j in range(i + 1, len(found)):
+            (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
+            difference, critical = contrast(a, b, alpha)
+            if "?" in (va, vb) or not math.isfinite(critical):
+                lines += [f"{la} against {lb}: no verdict (a speed without error bars).", ""]
+                continue
+            differ = abs(difference) > critical
+            if (va == "drops") != (vb == "drops"):
+                dropper, other = (la, lb) if va == "drops" else (lb, la)
+                summary = (f"Hc drops between 27 and 28 rpm with {dropper} and not with {other}, and the two steps "
+                           "differ" if differ else
+                           f"Hc drops between 27 and 28 rpm with {dropper} alone, but the two steps do not differ: "
+                           "these runs do not tell the two apart at this step")
+            elif va == "drops":
+                summary = "Hc drops between 27 and 28 rpm with both" + (", by different amounts" if differ else "")
+            else:
+                summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
+            lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
+                      "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom).", ""]
     return lines
 
 
