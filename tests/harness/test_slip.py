@@ -271,6 +271,36 @@ class Slip(unittest.TestCase):
         # the level follows alpha
         self.assertIn("(99% interval", "\n".join(slip.answer_section([("A", study(-2e-3)), ("B", study(0.0))], 0.01)))
 
+    def test_where_the_bed_lets_go(self):
+        # a ramp of 3 speeds, 10 samples each 0.05 s apart: carried (bed_turn 0.98, one dip to
+        # 0.85 at 29 rpm, which is no release) until 0.15 s into 30 rpm, then 0.8
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            for j, rpm in enumerate((28, 29, 30)):
+                rows = []
+                for k in range(10):
+                    t = 0.5 * j + 0.05 * k
+                    turn = 0.8 if (rpm == 30 and k >= 3) else 0.85 if (rpm == 29 and k == 5) else 0.98
+                    rows.append({"time_s": t, "Hh_m": 0.1, "Hc_m": -0.093, "angle_deg": 38.0, "bed_turn_1": turn,
+                                 "wall_roll_1": 0.04, "wall_slip_1": 0.003})
+                write_series(docs, "ramp", rpm, rows)
+            ramp = slip.ramp_series(docs, "ramp")
+            self.assertEqual([r[1] for r in ramp[::10]], [28.0, 29.0, 30.0])
+            t, rpm, into = slip.lets_go(ramp)
+            self.assertEqual(rpm, 30.0)
+            self.assertAlmostEqual(t, 1.15)
+            self.assertAlmostEqual(into, 0.15)
+            # fewer samples below than `least` at the end: not (yet) a release
+            self.assertIsNone(slip.lets_go(ramp[:24]))
+            self.assertIsNone(slip.lets_go(ramp[:20]))
+            # the report says it, and says when a bed stays carried
+            self.assertIn("lets go of the drum (`bed_turn` below 0.9 from then on) at 1.15 s, 0.15 s into 30 rpm",
+                          slip.markdown([("ramp", slip.study_speeds(docs, "ramp", 0.5, 3))], 0.5, 3, 0.05, "x",
+                                        ramps=[ramp]))
+            self.assertIn("turns with the drum throughout",
+                          slip.markdown([("ramp", slip.study_speeds(docs, "ramp", 0.5, 3))], 0.5, 3, 0.05, "x",
+                                        ramps=[ramp[:20]]))
+
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:
             write_speed(Path(d), "s", 22, -0.097)

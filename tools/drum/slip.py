@@ -74,6 +74,35 @@ def study_speeds(docs, name, window, batches):
     return out
 
 
+# bed_turn below which the bed no longer turns with the drum: in steady flow a carried bed has
+# 0.98-1.00, one riding on a layer of rolling beads 0.45-0.51 (docs/drum/study_thesis.csv)
+LETS_GO = 0.9
+
+
+def ramp_series(docs, name):
+    """[(time_s, rpm, Hc_m, bed_turn)] of a study's speeds in order: the ramp as one series."""
+    out = []
+    for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
+        path = folder / "series_metrics.csv"
+        if path.exists():
+            out += [(float(r["time_s"]), float(folder.name[:-3]), float(r["Hc_m"]), float(r["bed_turn_1"]))
+                    for r in harness.read_csv(path)]
+    return out
+
+
+def lets_go(series, threshold=LETS_GO, least=4):
+    """Where the bed lets go of the drum along a ramp: (time, rpm, time into that speed) of the
+    first sample from which bed_turn stays below `threshold` to the end, at least `least` samples
+    (a passing dip is no release); None where it does not."""
+    since = None
+    for k, (_, _, _, turn) in enumerate(series):
+        since = (since if since is not None else k) if turn < threshold else None
+    if since is None or len(series) - since < least:
+        return None
+    t, rpm = series[since][:2]
+    return t, rpm, t - min(s[0] for s in series if s[1] == rpm)
+
+
 class NullRate:
     """What null_rate found: per speed, the changes called and the comparisons made at each pair of
     consecutive pieces."""
@@ -262,7 +291,7 @@ def first_drop(step_rows):
     return None
 
 
-def markdown(studies, window, batches, alpha, command, null=None):
+def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
@@ -288,7 +317,7 @@ def markdown(studies, window, batches, alpha, command, null=None):
                   "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
                   ""]
     lines += answer_section(studies, alpha)
-    for label, speeds in studies:
+    for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
         lines += [f"## {label}", ""]
@@ -299,6 +328,14 @@ def markdown(studies, window, batches, alpha, command, null=None):
                       f"a drop of {caught:.2f} mm would be caught with 80 % probability).", ""]
         else:
             lines += ["27 → 28 rpm: not run yet.", ""]
+        ramp = ramps[k] if ramps else []
+        released = lets_go(ramp)
+        if released:
+            t, rpm, into = released
+            lines += [f"The bed lets go of the drum (`bed_turn` below {LETS_GO:g} from then on) at {t:.2f} s, "
+                      f"{into:.2f} s into {rpm:g} rpm.", ""]
+        elif ramp:
+            lines += [f"The bed turns with the drum throughout (`bed_turn` never stays below {LETS_GO:g}).", ""]
         if first:
             lines += [f"First drop of Hc along the steps: {first[0]:g} → {first[1]:g} rpm ({first[2]:+.2f} mm, "
                       f"beyond ±{first[3]:.2f} mm).", ""]
@@ -320,9 +357,23 @@ def markdown(studies, window, batches, alpha, command, null=None):
     return "\n".join(lines)
 
 
-def chart(studies, path):
-    fig, axes = charts.figure(1, 2, title="slip test: speed raised step by step", size=(5.5, 4.2))
-    for label, speeds in studies:
+def chart(studies, path, ramps=None):
+    fig, axes = charts.figure(2, 2, title="slip test: speed raised step by step", size=(5.5, 4.2))
+    for k, (label, speeds) in enumerate(studies):
+        ramp = ramps[k] if ramps else []
+        if ramp:  # the ramp in time, as Fig. 3.5 shows it; dotted: each speed's start
+            t0 = ramp[0][0]
+            line, = axes[2].plot([r[0] - t0 for r in ramp], [r[2] * 1e3 for r in ramp], lw=1, label=label)
+            axes[3].plot([r[0] - t0 for r in ramp], [r[3] for r in ramp], lw=1, color=line.get_color(), label=label)
+            axes[2].annotate(f"{ramp[0][1]:g}", (0.0, 1.0), xycoords=("data", "axes fraction"), fontsize=6, ha="left",
+                             va="top")
+            for a, b in zip(ramp, ramp[1:]):
+                if b[1] != a[1]:
+                    for ax in axes[2:]:
+                        ax.axvline(b[0] - t0, color=line.get_color(), ls=":", lw=0.6)
+                    axes[2].annotate(f"{b[1]:g}", (b[0] - t0, 1.0), xycoords=("data", "axes fraction"),
+                                     fontsize=6, ha="left", va="top")
+
         rpm = [s[0] for s in speeds]
         for ax, col, scale in ((axes[0], "Hc_m", 1e3), (axes[1], "bed_turn_1", 1.0)):
             ax.errorbar(rpm, [s[1][col][0] * scale for s in speeds],
@@ -330,8 +381,14 @@ def chart(studies, path):
                         marker="o", capsize=3, label=label)
     axes[0].set_ylabel("centre of mass Hc [mm]")
     axes[1].set_ylabel("bed turn (1: carried by the drum)")
-    for ax in axes:
+    axes[2].set_ylabel("centre of mass Hc [mm]")
+    axes[3].set_ylabel("bed turn")
+    axes[3].axhline(LETS_GO, color="grey", ls="--", lw=0.8)
+    for ax in axes[:2]:
         ax.set_xlabel("drum speed [rpm]")
+    for ax in axes[2:]:
+        ax.set_xlabel("time on the ramp [s] (numbers: rpm from there)")
+    for ax in axes:
         ax.legend(fontsize=7)
     return charts.save(fig, path)
 
@@ -374,7 +431,8 @@ def main(argv=None):
     command = "tools/drum/slip.py " + " ".join(f"--study {n} '{l}'" for n, l in a.study) + "".join(
         f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
         f" --null {a.null}" if a.null != "study_thesis" else "")
-    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null))
+    ramps = [ramp_series(docs, name) for name, _ in a.study]
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps))
     rows = []
     for label, speeds in studies:
         for rpm, avg, seconds, batches in speeds:
@@ -383,7 +441,7 @@ def main(argv=None):
                 row[col], row[se_column(col)] = avg[col]
             rows.append(row)
     harness.write_csv(out.with_suffix(".csv"), rows)
-    chart(studies, out.with_suffix(".png"))
+    chart(studies, out.with_suffix(".png"), ramps)
     harness.say("slip", f"wrote {out.with_suffix('.md')}, .csv, .png")
     return 0
 
