@@ -129,6 +129,7 @@ class Slip(unittest.TestCase):
         mean, se = slip.batch_means([9.0, 1.0, 1.0, 1.0], 3)  # the first value left out
         self.assertEqual((mean, se), (1.0, 0.0))
         self.assertTrue(math.isnan(slip.batch_means([1.0], 3)[1]))
+        self.assertTrue(all(math.isnan(x) for x in slip.batch_means([1.0, float("nan"), 2.0, 3.0], 3)))
 
     def test_a_drop_at_28_and_a_steady_rise(self):
         with tempfile.TemporaryDirectory() as d:
@@ -272,34 +273,45 @@ class Slip(unittest.TestCase):
         self.assertIn("(99% interval", "\n".join(slip.answer_section([("A", study(-2e-3)), ("B", study(0.0))], 0.01)))
 
     def test_where_the_bed_lets_go(self):
-        # a ramp of 3 speeds, 10 samples each 0.05 s apart: carried (bed_turn 0.98, one dip to
-        # 0.85 at 29 rpm, which is no release) until 0.15 s into 30 rpm, then 0.8
+        # a ramp of 3 speeds as steady.py writes them: 10 samples 0.05 s apart, each speed's first
+        # a repeat of the speed before's last state (same time; bed_turn divided by the new
+        # speed, here 0.85: left out). Carried (0.98) with a one-sample dip to 0.85 at 29 rpm and
+        # a sample without bed_turn, no release; at 30 rpm from 0.20 s into it (t 1.10) 0.8, with
+        # one sample back above the threshold (0.91), which does not move the release
         with tempfile.TemporaryDirectory() as d:
             docs = Path(d)
             for j, rpm in enumerate((28, 29, 30)):
                 rows = []
                 for k in range(10):
-                    t = 0.5 * j + 0.05 * k
-                    turn = 0.8 if (rpm == 30 and k >= 3) else 0.85 if (rpm == 29 and k == 5) else 0.98
-                    rows.append({"time_s": t, "Hh_m": 0.1, "Hc_m": -0.093, "angle_deg": 38.0, "bed_turn_1": turn,
-                                 "wall_roll_1": 0.04, "wall_slip_1": 0.003})
+                    turn = 0.98
+                    if j and k == 0:
+                        turn = 0.85
+                    elif rpm == 29 and k in (5, 7):
+                        turn = 0.85 if k == 5 else float("nan")
+                    elif rpm == 30 and k >= 4:
+                        turn = 0.91 if k == 8 else 0.8
+                    rows.append({"time_s": 0.45 * j + 0.05 * k, "Hh_m": 0.1, "Hc_m": -0.093, "angle_deg": 38.0,
+                                 "bed_turn_1": turn, "wall_roll_1": 0.04, "wall_slip_1": 0.003})
                 write_series(docs, "ramp", rpm, rows)
             ramp = slip.ramp_series(docs, "ramp")
-            self.assertEqual([r[1] for r in ramp[::10]], [28.0, 29.0, 30.0])
+            self.assertEqual(len(ramp), 10 + 8 + 9)
+            self.assertNotIn(0.85, [r[3] for r in ramp if r[1] == 30])
             t, rpm, into = slip.lets_go(ramp)
             self.assertEqual(rpm, 30.0)
-            self.assertAlmostEqual(t, 1.15)
-            self.assertAlmostEqual(into, 0.15)
+            self.assertAlmostEqual(t, 1.10)
+            self.assertAlmostEqual(into, 0.20)
+            # without the running median the sample at 0.91 would leave one sample below at the end:
+            # no release found
+            self.assertIsNone(slip.lets_go(ramp, span=1))
             # fewer samples below than `least` at the end: not (yet) a release
-            self.assertIsNone(slip.lets_go(ramp[:24]))
-            self.assertIsNone(slip.lets_go(ramp[:20]))
+            self.assertIsNone(slip.lets_go(ramp[:21]))
+            self.assertIsNone(slip.lets_go(ramp[:18]))
             # the report says it, and says when a bed stays carried
-            self.assertIn("lets go of the drum (`bed_turn` below 0.9 from then on) at 1.15 s, 0.15 s into 30 rpm",
-                          slip.markdown([("ramp", slip.study_speeds(docs, "ramp", 0.5, 3))], 0.5, 3, 0.05, "x",
-                                        ramps=[ramp]))
+            speeds = slip.study_speeds(docs, "ramp", 0.5, 3)
+            self.assertIn("below 0.9 from then on) at 1.10 s, 0.20 s into 30 rpm",
+                          slip.markdown([("ramp", speeds)], 0.5, 3, 0.05, "x", ramps=[ramp]))
             self.assertIn("turns with the drum throughout",
-                          slip.markdown([("ramp", slip.study_speeds(docs, "ramp", 0.5, 3))], 0.5, 3, 0.05, "x",
-                                        ramps=[ramp[:20]]))
+                          slip.markdown([("ramp", speeds)], 0.5, 3, 0.05, "x", ramps=[ramp[:18]]))
 
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:

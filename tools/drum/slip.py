@@ -46,8 +46,11 @@ def se_column(col):
 
 def batch_means(values, batches):
     """(mean, standard error) of `values` by batch means over `batches` contiguous batches of
-    equal length (the first len % batches values left out); nan error with fewer than 2."""
+    equal length (the first len % batches values left out); nan error with fewer than 2, and
+    both nan where a value is missing (nan: a step with it then gets no verdict)."""
     n = len(values) // batches
+    if not all(math.isfinite(v) for v in values):
+        return float("nan"), float("nan")
     if batches < 2 or n < 1:
         return (statistics.fmean(values) if values else float("nan")), float("nan")
     kept = values[len(values) - n * batches:]
@@ -75,32 +78,43 @@ def study_speeds(docs, name, window, batches):
 
 
 # bed_turn below which the bed no longer turns with the drum: in steady flow a carried bed has
-# 0.98-1.00, one riding on a layer of rolling beads 0.45-0.51 (docs/drum/study_thesis.csv)
+# 0.99-1.00, one riding on a layer of rolling beads 0.45-0.51 (docs/drum/study_thesis.csv)
 LETS_GO = 0.9
 
 
 def ramp_series(docs, name):
-    """[(time_s, rpm, Hc_m, bed_turn)] of a study's speeds in order: the ramp as one series."""
+    """[(time_s, rpm, Hc_m, bed_turn)] of a study's speeds in order: the ramp as one series. A
+    speed's first sample repeats the previous speed's last state (same time) with `bed_turn`
+    divided by the new speed: it is left out, as are samples without a `bed_turn`."""
     out = []
     for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
         path = folder / "series_metrics.csv"
         if path.exists():
-            out += [(float(r["time_s"]), float(folder.name[:-3]), float(r["Hc_m"]), float(r["bed_turn_1"]))
-                    for r in harness.read_csv(path)]
+            for r in harness.read_csv(path):
+                t, turn = float(r["time_s"]), float(r["bed_turn_1"])
+                if math.isfinite(turn) and (not out or t > out[-1][0]):
+                    out.append((t, float(folder.name[:-3]), float(r["Hc_m"]), turn))
     return out
 
 
-def lets_go(series, threshold=LETS_GO, least=4):
+def lets_go(series, threshold=LETS_GO, least=4, span=5):
     """Where the bed lets go of the drum along a ramp: (time, rpm, time into that speed) of the
-    first sample from which bed_turn stays below `threshold` to the end, at least `least` samples
-    (a passing dip is no release); None where it does not."""
+    first sample from which `bed_turn`, as a running median over `span` samples (a single sample
+    just above or below the threshold does not move the answer), stays below `threshold` to the
+    end, for at least `least` samples; None where it does not. The time into a speed counts from
+    the speed's change, the time of the sample before its first."""
+    turns = [s[3] for s in series]
+    half = span // 2
+    smooth = [statistics.median(turns[max(0, k - half):k + half + 1]) for k in range(len(turns))]
     since = None
-    for k, (_, _, _, turn) in enumerate(series):
+    for k, turn in enumerate(smooth):
         since = (since if since is not None else k) if turn < threshold else None
     if since is None or len(series) - since < least:
         return None
     t, rpm = series[since][:2]
-    return t, rpm, t - min(s[0] for s in series if s[1] == rpm)
+    before = [s[0] for s in series if s[1] < rpm]
+    start = max(before) if before else min(s[0] for s in series if s[1] == rpm)
+    return t, rpm, t - start
 
 
 class NullRate:
@@ -332,8 +346,8 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
         released = lets_go(ramp)
         if released:
             t, rpm, into = released
-            lines += [f"The bed lets go of the drum (`bed_turn` below {LETS_GO:g} from then on) at {t:.2f} s, "
-                      f"{into:.2f} s into {rpm:g} rpm.", ""]
+            lines += [f"The bed lets go of the drum (`bed_turn`, a running median over 5 samples, below {LETS_GO:g} "
+                      f"from then on) at {t:.2f} s, {into:.2f} s into {rpm:g} rpm.", ""]
         elif ramp:
             lines += [f"The bed turns with the drum throughout (`bed_turn` never stays below {LETS_GO:g}).", ""]
         if first:
