@@ -30,12 +30,17 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import harness  # noqa: E402
 
 
-def welch_dof(se_a, batches_a, se_b, batches_b):
-    """Welch-Satterthwaite degrees of freedom of se_a^2 + se_b^2 (batch means: n - 1 each)."""
-    na, nb = batches_a - 1, batches_b - 1
-    if na < 1 or nb < 1:
+def satterthwaite(parts):
+    """Welch-Satterthwaite degrees of freedom of the sum of se^2 over parts [(se, batches)] (batch
+    means: n - 1 each); nan where a part has fewer than 2 batches."""
+    if any(n - 1 < 1 for _, n in parts):
         return float("nan")
-    return (se_a ** 2 + se_b ** 2) ** 2 / (se_a ** 4 / na + se_b ** 4 / nb)
+    return sum(se ** 2 for se, _ in parts) ** 2 / sum(se ** 4 / (n - 1) for se, n in parts)
+
+
+def welch_dof(se_a, batches_a, se_b, batches_b):
+    """Welch-Satterthwaite degrees of freedom of se_a^2 + se_b^2."""
+    return satterthwaite([(se_a, batches_a), (se_b, batches_b)])
 
 
 def detectable(se_a, batches_a, se_b, batches_b, critical_of, power=0.8, replicas=20000):

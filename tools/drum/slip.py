@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
-from histories import detectable, welch_dof  # noqa: E402
+from histories import detectable, satterthwaite, welch_dof  # noqa: E402
 from scipy import stats  # noqa: E402
 
 # (label, column, scale, unit, digits) of the metrics compared
@@ -246,10 +246,9 @@ def contrast(x, y, alpha):
     x, y as step_change gives them."""
     (dx, sx, (s1, n1, s2, n2)), (dy, sy, (s3, n3, s4, n4)) = x, y
     se = math.hypot(sx, sy)
-    parts = [(s, n - 1) for s, n in ((s1, n1), (s2, n2), (s3, n3), (s4, n4))]
-    if not se > 0 or any(d < 1 for _, d in parts):
+    dof = satterthwaite([(s1, n1), (s2, n2), (s3, n3), (s4, n4)]) if se > 0 else float("nan")
+    if not math.isfinite(dof):
         return dy - dx, float("nan")
-    dof = se ** 4 / sum(s ** 4 / d for s, d in parts)
     return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
 
 
