@@ -7,7 +7,8 @@
 #   tools/drum/campaign.sh --checkpoint-now    # before stopping the machine: checkpoint and stop
 #
 # Do not start it while one of its studies runs on its own (steady.py has no lock); two
-# campaigns at once are refused.
+# campaigns at once are refused. It runs a copy of the installed binaries (post/campaign-bin), so
+# `bash setup.sh` and the tests may run beside it; a rebuilt model reaches it when it is restarted.
 #
 # 1. The thesis' chain, 7-63 rpm (Table 3.1, tc/5 with exactRestitution, primitive cylinder).
 # 2. A second history of 21 rpm: from 28 rpm's end state (the same carried bed, arrived at from
@@ -40,6 +41,21 @@ fi
 py=/usr/bin/python3
 now=()
 if [[ "${1:-}" == "--checkpoint-now" ]]; then now=(--checkpoint-now); fi
+# The campaign runs its own copy of the installed binaries, taken when it starts: `bash setup.sh`
+# (a rebuild, a test run from a clone) rewrites the installed library in place, which would crash
+# a run that has it mapped. So a campaign can go on while the project is rebuilt and tested.
+# (--checkpoint-now runs no simulation and leaves a running campaign's copy alone.)
+if [[ ${#now[@]} -eq 0 ]]; then
+  own=post/campaign-bin
+  installed=$(dirname "$(command -v liggghts)")
+  rm -rf "$own.new" && mkdir -p "$own.new/bin" "$own.new/lib"
+  cp "$installed/../lib/libliggghts_viscoelastic.so" "$own.new/lib/"
+  for t in liggghts drum_metrics drum_mesh contact_law collide; do cp "$installed/$t" "$own.new/bin/"; done
+  rm -rf "$own" && mv "$own.new" "$own"
+  export LIGGGHTS=$PWD/$own/bin/liggghts DRUM_METRICS=$PWD/$own/bin/drum_metrics DRUM_MESH=$PWD/$own/bin/drum_mesh \
+    CONTACT_LAW=$PWD/$own/bin/contact_law COLLIDE=$PWD/$own/bin/collide
+  echo "campaign: runs $LIGGGHTS ($(sha256sum "$own/lib/libliggghts_viscoelastic.so" | cut -c1-12))"
+fi
 steady() { "$py" tools/drum/steady.py --var wall cylinder --var skin 0.3 --commit "$@" "${now[@]}"; }
 # commit what an analysis wrote (only these files: a campaign shares the repository)
 save() {
