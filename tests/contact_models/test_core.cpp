@@ -114,7 +114,7 @@ TEST(Timestep, ClosedFormAgreesWithTheLimitOfTheCoefficients)
 }
 
 // The guard against the measured onset of multi-contact instability (stock
-// hooke/stiffness with our constants; benchmarks/results/guard_loaded/: the
+// hooke/stiffness with our constants; benchmarks/results/stability_column.csv: the
 // settled 2009-bead column under 1 g and 30 g, the first dt/tc at which beads
 // are lost or the kinetic energy ends 10 times above that at tc/10; the 6 mm
 // drum over 0.2 s). It must stop every failing run. Half the binary limit
