@@ -300,9 +300,11 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
     // about vt tc / d during the contact and the tangential motion pulls the
     // centres apart (vt^2 / d), which moves both en and the friction impulse
     // (Walton's relation is 4 % off at vn 0.1 m/s, vt/vn 4). Compared: en and
-    // the change of the contact point's tangential velocity, du. Tolerance:
-    // the 0.5 % target at tc/10 and 1 % up to tc/9. Measured: at most 0.08 %
-    // (en) and 0.16 % (du) at the coarsest steps, 0.02 % and 0.12 % at tc/10.
+    // the change of the contact point's tangential velocity, du. The claim
+    // (README, Tests), well inside the 0.5 % target at tc/10 and 1 % up to
+    // tc/9: at most 0.1 % (en) and 0.25 % (du) at the coarsest steps, 0.03 %
+    // and 0.2 % at tc/10, the steps' own error in sliding (the pull's fall
+    // within a step is not followed).
     // Without the pull on the overlap (exactCollisionStep) one phase in six
     // missed en by 7 % at tc/5 (vn 1 m/s): the end step never ran.
     unsigned seed = 400;
@@ -335,9 +337,9 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
                     worstDu = std::max(worstDu, std::fabs((1.0 + o.tangentialRestitution) * c.tangentialSpeed / duLaw - 1.0));
                     worstEn = std::max(worstEn, std::fabs(o.restitution / ode.restitution - 1.0));
                 }
-                const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
-                EXPECT_LT(worstDu, tolerance) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
-                EXPECT_LT(worstEn, tolerance) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
+                const bool coarse = ratio < 9.0;
+                EXPECT_LT(worstDu, coarse ? 2.5e-3 : 2e-3) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
+                EXPECT_LT(worstEn, coarse ? 1e-3 : 3e-4) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
                 std::printf("sliding pair, limitForce %d, en %.1f vn %.1f vt/vn %.0f mu %.1f, tc/dt %.1f: law en %.5f du "
                             "%.5f m/s (Walton %.5f); worst en %.2e, du %.2e\n",
                             limitForce, im.en, im.vn, im.slope, im.mu, ratio, ode.restitution, duLaw,
@@ -356,8 +358,9 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
     // with limitForce the cap falls with the force, more slowly than the
     // spring's force, and the law gives 0.466 and 0.803. exactCollision follows
     // the instantaneous cap through the step (cappedFlow): every start phase
-    // within the 0.5 % target of the law at tc/10 and finer, 1 % at the
-    // coarser steps, for en and et, pair and wall, limitForce off and on.
+    // within 3e-4 of the law for en and et at every step (the claim, README,
+    // Tests; far inside the 0.5 % target at tc/10 and 1 % at tc/5), pair and
+    // wall, limitForce off and on.
     unsigned seed = 600;
     struct P { double en, et, mu; };
     for (P p : {P{0.56, 0.46, 0.5}, P{0.3, 0.8, 0.5}})
@@ -374,7 +377,7 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
                         "against the law: en %.2e, et %.2e\n",
                         p.en, p.et, p.mu, name(g).c_str(), limitForce, ratio, ode.restitution,
                         ode.tangentialRestitution, law.normal, law.tangential);
-            const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
+            const double tolerance = 3e-4;
             EXPECT_LT(law.normal, tolerance) << name(g) << " en " << p.en << " limitForce " << limitForce << " tc/dt " << ratio;
             EXPECT_LT(law.tangential, tolerance)
                 << name(g) << " et " << p.et << " limitForce " << limitForce << " tc/dt " << ratio;
@@ -386,7 +389,8 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
     // Gross sliding (vt/vn 4, mu 0.3, 1 m/s) with et != en, against the
     // continuous law (reference ODE, rigid-arm spring; between two spheres the
     // law's en is not the request: the pull of the tangential motion). Within
-    // the 0.5 % target at tc/10 and 1 % at the coarsest steps, for en and the
+    // the claim (README, Tests: 0.8 % at the coarsest steps, 0.25 % at tc/10;
+    // inside the 1 % and 0.5 % targets), for en and the
     // contact point's change of tangential velocity du, Table 3.1's beads and
     // en 0.3 / et 0.8 (where the lightly damped spring sticks again and slides
     // again at the end of the contact: cappedFlow's events).
@@ -415,7 +419,7 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
             std::printf("sliding, en %.2f et %.2f, %s, limitForce %d, tc/dt %.1f: the law's en %.5f; worst against "
                         "the law: en %.2e, du %.2e\n",
                         p.en, p.et, name(g).c_str(), limitForce, ratio, ode.restitution, worstEn, worstDu);
-            const double tolerance = ratio < 9.0 ? 0.01 : 0.005;
+            const double tolerance = ratio < 9.0 ? 8e-3 : 2.5e-3;
             EXPECT_LT(worstEn, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;
             EXPECT_LT(worstDu, tolerance) << name(g) << " limitForce " << limitForce << " tc/dt " << ratio;
         }
