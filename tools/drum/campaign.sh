@@ -50,10 +50,11 @@ if [[ ${#now[@]} -eq 0 ]]; then
   installed=$(dirname "$(command -v liggghts)")
   rm -rf "$own.new" && mkdir -p "$own.new/bin" "$own.new/lib"
   cp "$installed/../lib/libliggghts_viscoelastic.so" "$own.new/lib/"
-  for t in liggghts drum_metrics drum_mesh contact_law collide; do cp "$installed/$t" "$own.new/bin/"; done
+  for t in liggghts drum_metrics drum_mesh contact_law collide; do
+    cp "$installed/$t" "$own.new/bin/"
+    export "${t^^}=$PWD/$own/bin/$t"  # the variable tools/harness reads for it: its name in capitals
+  done
   rm -rf "$own" && mv "$own.new" "$own"
-  export LIGGGHTS=$PWD/$own/bin/liggghts DRUM_METRICS=$PWD/$own/bin/drum_metrics DRUM_MESH=$PWD/$own/bin/drum_mesh \
-    CONTACT_LAW=$PWD/$own/bin/contact_law COLLIDE=$PWD/$own/bin/collide
   echo "campaign: runs $LIGGGHTS ($(sha256sum "$own/lib/libliggghts_viscoelastic.so" | cut -c1-12))"
 fi
 steady() { "$py" tools/drum/steady.py --var wall cylinder --var skin 0.3 --commit "$@" "${now[@]}"; }
