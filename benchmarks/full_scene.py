@@ -14,11 +14,15 @@ exactRestitution on), short runs of --time simulated seconds, the variants inter
   1 rank          the mesh variant on one rank: the parallel efficiency t(1) / (2 t(2)) per round
                   of mesh and balance (on one rank the same work)
   1 rank fast     fast on one rank: the parallel efficiency of fast
+  2 at once       two runs of fast on one rank each, started together (the study's independent
+                  runs, e.g. two speeds, side by side instead of one after the other on 2 ranks):
+                  their combined particle-steps over the later one's loop time, against fast's
 Cost: LIGGGHTS loop time (median, and the range over rounds), particle-steps per second, beads,
 ghosts and neighbour pairs per rank (LIGGGHTS' Nlocal/Nghost/Neighs), neighbour-list builds.
 Writes OUT/full_scene.csv (one row per run) and OUT/full_scene.json."""
 
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
@@ -39,9 +43,26 @@ VARIANTS = {
     "stock fast": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.3, "model": "hooke"}),
     "1 rank": (1, BASE),
     "1 rank fast": (1, {**BASE, "wall": "cylinder", "skin": 0.3}),
+    "2 at once": (1, {**BASE, "wall": "cylinder", "skin": 0.3}),  # two of these together
 }
+AT_ONCE = {"2 at once": 2}  # variant: how many one-rank runs start together
 # the one-rank run doing the same work as a two-rank variant (balance only moves the cut)
 SERIAL = {"mesh": "1 rank", "balance": "1 rank", "fast": "1 rank fast"}
+
+
+class Together:
+    """Runs started together, read as one measurement: their beads and cores add up, and the
+    work is done when the later one ends (its loop time)."""
+
+    def __init__(self, logs):
+        self.logs = logs
+        self.procs = sum(lg.procs for lg in logs)
+        self.loop_time = max(lg.loop_time for lg in logs)
+        self.steps = logs[0].steps
+        self.atoms = sum(lg.atoms for lg in logs)
+        self.per_rank = logs[0].per_rank
+        self.neighbor_builds = logs[0].neighbor_builds
+        self.particle_steps_per_s = sum(lg.atoms * lg.steps for lg in logs) / self.loop_time
 
 
 def parser():
@@ -62,12 +83,22 @@ def run(args):
     if unknown:
         raise SystemExit(f"full_scene: unknown variant(s) {', '.join(unknown)} (of {', '.join(VARIANTS)})")
 
+    def one(tag, ranks, extra):
+        return harness.drum(harness.post(tag + ".log"), np=ranks, period=args.period, rpm=common.RPM, dt=dt,
+                            exact="on", time=args.time, dumpdt=1000, start="restart", restart=args.restart,
+                            stock=stock, name=tag, **extra)
+
     def variant(name):
         ranks, extra = VARIANTS[name]
         tag = "full_scene/" + name.replace(" ", "_")
-        return lambda: harness.drum(harness.post(tag + ".log"), np=ranks, period=args.period, rpm=common.RPM, dt=dt,
-                                    exact="on", time=args.time, dumpdt=1000, start="restart", restart=args.restart,
-                                    stock=stock, name=tag, **extra)
+        if name not in AT_ONCE:
+            return lambda: one(tag, ranks, extra)
+
+        def together():
+            with ThreadPoolExecutor(AT_ONCE[name]) as pool:
+                runs = [pool.submit(one, f"{tag}_{i + 1}", ranks, extra) for i in range(AT_ONCE[name])]
+                return Together([r.result() for r in runs])
+        return together
 
     logs = harness.interleaved({n: variant(n) for n in names}, args.rounds,
                                progress=lambda s: harness.say("full_scene", s))
@@ -138,12 +169,15 @@ def section(res):
     if res.has("full_scene_long.csv", "full_scene_long.json"):
         text += ("\nLong windows: the study's settings (`fast`) against stock on them and on one rank, "
                  "runs five times longer:\n\n" + common.section_of("full_scene_long", "full_scene")(render)(res))
+    if res.has("full_scene_at_once.csv", "full_scene_at_once.json"):
+        text += ("\nSeveral runs at once: the study's settings on 2 ranks against two one-rank runs started "
+                 "together, long windows:\n\n" + common.section_of("full_scene_at_once", "full_scene")(render)(res))
     return text
 
 
 def verdict(table, rows):
     """The fastest two-rank variant, and ours against stock on the same scene and settings."""
-    two = [r for r in table if r["ranks"] == 2 and not r["variant"].startswith("stock")]
+    two = [r for r in table if r["ranks"] == 2 and not r["variant"].startswith("stock") and r["variant"] not in AT_ONCE]
     best = max(two, key=lambda r: r["psps"])
     text = (f"Fastest of ours: {best['variant']}, {best['psps']:.3g} particle-steps/s on 2 ranks (parallel efficiency "
             f"{best['efficiency']:.2f}). cylinder and the skins were measured alone on top of `balance`, fast "
@@ -155,6 +189,12 @@ def verdict(table, rows):
             text += (f"Ours (`{ours}`) against stock `hooke/stiffness` given the same constants, same scene and "
                      f"settings (`{stock}`): loop-time ratio ours / stock "
                      f"{harness.median_ratio(loops[ours], loops[stock]):.3f} (median over rounds).\n")
+    at_once = {n: [r["particle_steps_per_s"] for r in rows if r["variant"] == n] for n in ("fast", "2 at once")}
+    if all(at_once.values()):
+        text += ("Two runs at once, one rank each (`2 at once`), against one after the other on 2 ranks (`fast`): "
+                 f"throughput ratio {harness.median_ratio(at_once['2 at once'], at_once['fast']):.3f} "
+                 "(median over rounds; above 1: independent runs, such as the study's separate chains, "
+                 "are better run side by side).\n")
     return text + "\n"
 
 
