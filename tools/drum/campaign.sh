@@ -31,8 +31,9 @@
 #    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/). Then study_yade goes
 #    on to 28 and 35 rpm.
 # 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
-#    (1.23e-6 s) with the nominal law, to a steady state (3 revolutions at least: tc/81 costs 16
-#    times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
+#    (1.23e-6 s) with the nominal law, to a steady state with the recommended rule (3 revolutions
+#    at least, the standard errors' 95 % bound within the targets: a 3-batch estimate alone is no
+#    error bar to stop on; tc/81 costs 16 times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
 #    (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -124,7 +125,7 @@ fi
 for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
   IFS=: read -r step label segment <<< "$dt"
   steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 3
+    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 3 --confidence 0.95
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/dt_$label.csv" --rpm 21 --timesteps \
       --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
