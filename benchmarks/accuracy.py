@@ -55,7 +55,7 @@ def run(args):
 
     def drum(tag, ratio, **v):
         return harness.drum(harness.post(f"accuracy/{tag}.log"), np=args.np, start="restart", restart=args.restart,
-                            rpm=common.RPM, dt=common.dt_of(ratio), name=f"accuracy/{tag}", **v)
+                            rpm=common.RPM, dt=common.dt_of(ratio), name=f"accuracy/{tag}", **common.MESH, **v)
 
     logs = harness.interleaved({r: (lambda r=r: drum(f"time_{r:g}", r, time=args.span, dumpdt=1)) for r in ratios},
                                args.rounds, progress=lambda s: harness.say("accuracy", "timing " + s))

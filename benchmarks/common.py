@@ -16,6 +16,9 @@ import harness  # noqa: E402
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results"
 RPM = 21  # every benchmark drives the drum at the thesis' middle speed
+# The drum's wall and skin these benchmarks' committed results were measured with (inputs/drum.in's
+# defaults until the primitive cylinder and 0.3 d became them): explicit, so a rerun repeats them.
+MESH = {"wall": "surface", "skin": 0.5}
 
 
 def today():

@@ -33,7 +33,7 @@ def parser():
 def settle_slab():
     harness.say("cost", f"settling a slab ({SETTLE_TIME} s at {common.RPM} rpm from the grid) ...")
     harness.drum(harness.post("bench/slab.log"), time=SETTLE_TIME, dumpdt=SETTLE_TIME, rpm=common.RPM,
-                 name="bench/slab")
+                 name="bench/slab", **common.MESH)
     return harness.post("bench/slab.restart")
 
 
@@ -46,7 +46,7 @@ def run(args):
         span = steps * dt
         return harness.drum(harness.post(f"bench/{tag}.log"), np=args.np, start="restart", restart=restart,
                             rpm=common.RPM, dt=dt, time=f"{span:.10g}", dumpdt=f"{span if dumps else 10 * span:.10g}",
-                            model=model, stock=stock, name=f"bench/{tag}")
+                            model=model, stock=stock, name=f"bench/{tag}", **common.MESH)
 
     harness.say("cost", f"force check over {args.check} steps ...")
     for model in MODELS:

@@ -136,7 +136,7 @@ def drum(args):
             tag = f"stability_drum/en{en}_{f:g}_{label.replace('/', '_')}"
             log = harness.drum(harness.post(tag + ".log"), np=args.np, check=False, **start, rpm=common.RPM,
                                dt=f"{f * common.tc():.6g}", time=args.drum_time, dumpdt=1, model=model, stock=stock,
-                               name=tag, **laws)
+                               name=tag, **common.MESH, **laws)
             ke = log.thermo().get("KinEng", float("nan"))
             if f == args.reference and log.returncode == 0:
                 ke_ref = ke

@@ -34,7 +34,8 @@ def run(args):
         tag = f"walls/{wall}_{segments}"
         common.remove_snapshots(harness.post(tag))
         return harness.drum(harness.post(tag + ".log"), np=args.np, period=args.period, rpm=common.RPM, dt=dt,
-                            time=args.time, dumpdt=args.snapshot_dt, start="restart", restart=args.restart, wall=wall, segments=segments, name=tag)
+                            time=args.time, dumpdt=args.snapshot_dt, start="restart", restart=args.restart, wall=wall, segments=segments, name=tag,
+                            skin=common.MESH["skin"])
 
     averages = {}
 

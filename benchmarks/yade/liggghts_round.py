@@ -16,7 +16,7 @@ import harness  # noqa: E402
 def main(state, time, period, cores, name, round_):
     tag = f"{name}_r{round_}"
     harness.drum(harness.post(tag + ".log"), np=int(cores), start="restart", restart=f"{state}.restart", period=period,
-                 rpm=21, wall="moving", conventions="yade", time=time, dumpdt=1, name=tag)
+                 rpm=21, wall="moving", skin=0.5, conventions="yade", time=time, dumpdt=1, name=tag)  # skin: as measured
 
 
 if __name__ == "__main__":

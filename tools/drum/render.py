@@ -9,7 +9,7 @@ import re
 import sys
 
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, GetScalarBar,
-                             LegacyVTKReader, Render, SaveScreenshot, Show, XMLPolyDataReader)
+                             LegacyVTKReader, Render, SaveScreenshot, Show, STLReader, XMLPolyDataReader)
 
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("prefix", help="run prefix: bead files are <prefix>_<step>.vtp")
@@ -52,8 +52,13 @@ bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
 shown.SetScalarBarVisibility(view, True)
 
 shell_file = "%s_shell_%d.vtk" % (args.prefix, step)
-if os.path.exists(shell_file):
-    shell = Show(LegacyVTKReader(FileNames=[shell_file]), view)
+# the primitive cylinder writes no shell: its outline along the axis is any drum mesh's
+drum_mesh = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "meshes",
+                         "drum_L6_N180.stl")
+shell_source = (LegacyVTKReader(FileNames=[shell_file]) if os.path.exists(shell_file)
+                else STLReader(FileNames=[drum_mesh]) if os.path.exists(drum_mesh) else None)
+if shell_source is not None:
+    shell = Show(shell_source, view)
     shell.SetRepresentationType("Feature Edges")
     shell.AmbientColor = shell.DiffuseColor = [0.2, 0.2, 0.2]
     shell.ColorArrayName = [None, ""]
