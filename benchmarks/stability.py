@@ -35,8 +35,8 @@ LONG_DRUM_FRACTIONS = "0.2,0.22,0.24,0.26,0.28,0.3,0.32"  # the committed 0.2 s 
 LAWS = {"nominal": {"exact": "off", "tangential": "pournin"},
         "exactRestitution": {"exact": "on", "tangential": "pournin"},
         "exactCollision": {"collision": "on", "exact": "off", "tangential": "pournin"}}
-SLAB_COMMAND = ("mpirun -np 2 liggghts -in inputs/drum.in -var period 0.006 -var start grid -var wall surface -var skin 0.5 "
-                "-var tangential pournin "
+SLAB_COMMAND = ("mpirun -np 2 liggghts -in inputs/drum.in -var period 0.006 -var start grid "
+                + "".join(f"-var {k} {v} " for k, v in common.MESH.items()) + "-var tangential pournin "
                 "{flag} -var time 1.0 -var dt 2e-5 -var name stability_drum/slab6_{law}")
 EXACT_DRUM_FRACTIONS = "0.2,0.225,0.247,0.25"  # the committed runs of the exact laws; the guard: 0.247-0.248
 COLUMN_ENERGY_FACTOR = 10  # the settled column: its energy is 1e-9-1e-4 J where stable, jumps by decades past it

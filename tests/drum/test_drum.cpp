@@ -368,7 +368,7 @@ TEST_F(SmallDrum, StockHookeWithTheSameConstantsMovesTheBedIdentically)
     }
     const std::string cont = kMpirun + LIGGGHTS_LAUNCHER +
                              " -in inputs/drum.in -var period 0.006 -var dt 1e-5 -var exact off -var fill 0.10 -var time 0.002 -var dumpdt 0.002"
-                             " -var start restart -var restart post/small.restart";
+                             " -var wall surface -var skin 0.5 -var start restart -var restart post/small.restart";
     for (const char* r : {" -var name ours", " -var name stock -var model hooke -var stock stock.in",
                           " -var name other -var model hooke -var stock other.in"}) {
         const Result x = shell(cont + r, dir);

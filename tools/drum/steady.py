@@ -386,7 +386,7 @@ class Study:
         t_end = max(s for s, _ in harness.snapshots(self.prefix(rpm))) * self.dt
         averaged = t_end - steady_from if not math.isnan(steady_from) else float("nan")
         row = {"rpm": rpm, "conventions": a.variables.get("conventions", "thesis"),
-               "wall": a.variables.get("wall", "cylinder"), "period_m": float(a.period), "beads": done["beads"],
+               "wall": a.variables.get("wall") or study.drum_default("wall"), "period_m": float(a.period), "beads": done["beads"],
                "dt_s": self.dt, "settle_s": steady_from - (t_end - done["simulated_s"]), "average_s": averaged,
                "revolutions": averaged / revolution(rpm), "batches": average.get("batches", float("nan")),
                "done": outcome == "done", "cpu_hours": done["cpu_s"] / 3600}
