@@ -12,6 +12,7 @@ sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 import harness  # noqa: E402
 import common  # noqa: E402
+import full_scene  # noqa: E402
 import multicontact  # noqa: E402
 import peers  # noqa: E402
 import reductions  # noqa: E402
@@ -92,6 +93,37 @@ class Summaries(unittest.TestCase):
                  "nlocal_max": 1000 / n, "nlocal_min": 1000 / n} for n, r, t in ((1, 1, 8.0), (2, 1, 5.0), (4, 1, 4.0))]
         table = scaling.per_ranks(rows, cores=2)
         self.assertEqual([r["efficiency"] for r in table], ["1.00", "0.80", "0.50 (oversubscribed)"])
+
+    def test_two_runs_at_once(self):
+        class Log:  # what full_scene reads of a LIGGGHTS log
+            def __init__(self, loop):
+                self.procs, self.loop_time, self.steps, self.atoms = 1, loop, 5000, 65344
+                self.per_rank, self.neighbor_builds = {"Nlocal": (1, 1, 1)}, 3
+        pair = full_scene.Together([Log(70.0), Log(80.0)])
+        # the pair's work is both runs' particle-steps, done when the later one ends
+        self.assertEqual((pair.procs, pair.loop_time, pair.atoms), (2, 80.0, 2 * 65344))
+        self.assertAlmostEqual(pair.particle_steps_per_s, 2 * 65344 * 5000 / 80.0)
+
+        def rows(fast, at_once):
+            out = []
+            for i, (a, b) in enumerate(zip(fast, at_once)):
+                for name, loop, beads in (("fast", a, 65344), ("2 at once", b, 2 * 65344)):
+                    out.append({"variant": name, "round": i + 1, "ranks": 2, "loop_s": loop, "steps": 5000,
+                                "beads": beads, "particle_steps_per_s": beads * 5000 / loop, "nlocal_max": 1,
+                                "nlocal_min": 1, "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1})
+            return out
+
+        def reading(fast, at_once):
+            r = rows(fast, at_once)
+            return full_scene.verdict(full_scene.summary(r), r)
+
+        # throughput ratio per round: 2 t(fast) / t(2 at once)
+        self.assertIn("ratio 1.250 (median over rounds; per round 1.14–1.33): two at once pay in every round",
+                      reading([40, 40, 40], [64, 70, 60]))
+        self.assertIn("per round 0.80–0.89): one after the other on 2 ranks pays", reading([40, 40, 40], [90, 100, 95]))
+        self.assertIn("per round 0.80–1.14): the rounds disagree", reading([40, 40, 40], [70, 100, 80]))
+        # the pair never counts as the fastest two-rank variant
+        self.assertIn("Fastest of ours: fast,", reading([40, 40, 40], [64, 70, 60]))
 
     def test_yade_rounds(self):
         out = "x\nyade: round 1, 32672 beads, 300 steps, 29.0 s, 3.38e+05 particle-steps/s, 0 outside the drum\n"
