@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Drum wall: how should it be driven, and how fine must its mesh be? ("Model no more than a
 scene needs".) From one settled state (--restart), runs
-  surface/180  static mesh with a surface velocity, 180 facets (the default)
+  surface/180  static mesh with a surface velocity, 180 facets (the benchmarks' drum, MESH in common.py)
   moving/180   the mesh itself rotated (fix move/mesh)
   surface/90, surface/360   coarser and finer meshes
 interleaved over --rounds; cost: loop time, median, and its ratio to surface/180 per round
@@ -73,7 +73,7 @@ def section(res):
         f"{abs(ref['angle_deg'] - moving['angle_deg']):.1f}°) at {1 / moving['cost_ratio']:.2f}× its cost, and "
         f"{ref['segments']:.0f}\n"
         f"facets match {fine['segments']:.0f} (Hc within {mm(ref, fine):.2f} mm) where {coarse['segments']:.0f} move Hc "
-        f"by {mm(ref, coarse):.1f} mm: the default is surface velocity, {ref['segments']:.0f} facets.\n\n"
+        f"by {mm(ref, coarse):.1f} mm: the benchmarks' drum is surface velocity, {ref['segments']:.0f} facets\n(drum.in's default is now the primitive cylinder, \"Speed of the full scene\").\n\n"
         + common.sh(common.command("walls.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"])))
 
 
