@@ -312,6 +312,12 @@ class Slip(unittest.TestCase):
                           slip.markdown([("ramp", speeds)], 0.5, 3, 0.05, "x", ramps=[ramp]))
             self.assertIn("turns with the drum throughout",
                           slip.markdown([("ramp", speeds)], 0.5, 3, 0.05, "x", ramps=[ramp[:18]]))
+            # the answer's line on where each bed lets go: a release one speed before 27 -> 28
+            # would not show in that step
+            line = "\n".join(slip.released_line([("A", speeds), ("B", speeds), ("C", [])], [ramp, ramp[:18], []]))
+            self.assertIn("with A during 30 rpm (0.20 s into it); with B not up to 29 rpm.", line)
+            self.assertNotIn("with C", line)
+            self.assertEqual(slip.released_line([("A", speeds)], [[]]), [])
 
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:

@@ -252,11 +252,30 @@ def contrast(x, y, alpha):
     return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
 
 
-def answer_section(studies, alpha):
+def released_line(studies, ramps):
+    """Where along its ramp each study's bed lets go of the drum (`lets_go`), in one line: a bed
+    that lets go during a speed does so before that speed's step is measured, so the 27 -> 28 rpm
+    answer alone can miss a release one speed earlier."""
+    parts = []
+    for (label, speeds), ramp in zip(studies, ramps):
+        if not ramp:
+            continue
+        got = lets_go(ramp)
+        top = max(r[1] for r in ramp)
+        parts.append(f"with {label} during {got[1]:g} rpm ({got[2]:.2f} s into it)" if got
+                     else f"with {label} not up to {top:g} rpm")
+    if not parts:
+        return []
+    return ["Along the ramp the bed lets go of the drum (`bed_turn` below " f"{LETS_GO:g} from then on): "
+            + "; ".join(parts) + ". The thesis saw its drop between 27 and 28 rpm.", ""]
+
+
+def answer_section(studies, alpha, ramps=None):
     """The issue's question for two (or more) sets of conventions: does Hc drop between 27 and 28
     rpm with one and not the other? Each study's step by its own test; "one and not the other"
     only where the two steps also differ (their contrast): else the runs do not tell the
-    conventions apart at this step, whatever the single tests say."""
+    conventions apart at this step, whatever the single tests say. With `ramps` (one per study,
+    as ramp_series gives them), also where along the ramp each bed lets go."""
     found = [(label, got) for label, speeds in studies if (got := step_change(speeds, "Hc_m"))]
     if len(found) < 2:
         return []
@@ -293,7 +312,7 @@ def answer_section(studies, alpha):
                 summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
             lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
                       "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom).", ""]
-    return lines
+    return lines + released_line(studies, ramps or [])
 
 
 def first_drop(step_rows):
@@ -329,7 +348,7 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
                   + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
                   "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
                   ""]
-    lines += answer_section(studies, alpha)
+    lines += answer_section(studies, alpha, ramps)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
