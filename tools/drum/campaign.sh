@@ -14,16 +14,19 @@
 # 2. A second history of 21 rpm: from 28 rpm's end state (the same carried bed, arrived at from
 #    above), against the chain's 21 rpm with tools/drum/histories.py.
 # 3. The slip test (Fig. 3.5-3.6): the speed raised from 21 rpm one rpm at a time, 1.5 s per speed
-#    (21 -> 28 in 10.5 s: the thesis' ramp took 1e7 steps, about 12 s), on to 35 rpm, where the
-#    chain's bed no longer turns with the drum; from the chain's carried 21 rpm bed with the
-#    thesis' table (bead-drum mu 0.95), read by tools/drum/slip.py at once; then with YADE 1.12's
-#    conventions (mu 0.5, facet meff m/2, no attraction: exactRestitution contradicts them, so the
-#    nominal law at tc/10) from 21 rpm under them: study_yade's 21 rpm state after 8 s (settled:
-#    its four 2 s means of Hc within 0.11 mm), kept as docs/drum/slip_yade/start_state.restart.gz,
-#    so the ramp need not wait for that speed's averages (study_yade runs on from the same state
-#    afterwards); slip.py reads both. Each slip speed is one segment: --checkpoint-now keeps
-#    nothing of one under way (at most 1.5 s simulated is redone). The slip question comes before
-#    step 4: it is the study's answer.
+#    (21 -> 28 in 10.5 s: the thesis' ramp took 1e7 steps, about 12 s), from the chain's carried
+#    21 rpm bed with the thesis' table (bead-drum mu 0.95), on to 35 rpm, where the chain's bed no
+#    longer turns with the drum; then with YADE 1.12's conventions (mu 0.5, facet meff m/2, no
+#    attraction: exactRestitution contradicts them, so the nominal law at tc/10) from 21 rpm under
+#    them: study_yade's 21 rpm state after 8 s (settled: its four 2 s means of Hc within 0.11 mm),
+#    kept as docs/drum/slip_yade/start_state.restart.gz, so the ramp need not wait for that speed's
+#    averages; study_yade then goes on from the same state to 21 rpm's averages (slip.py's first
+#    YADE row). Under YADE's conventions the bed lets go during 26 rpm, so that ramp stops at 28 rpm,
+#    the thesis' ramp's end, which answers the 27 -> 28 rpm step. tools/drum/slip.py reads both
+#    at once. A release speed is one event of one history: so, once study_yade has 21 rpm's steady
+#    end state (about 9 s, three revolutions, after the first ramp's start), the same YADE ramp
+#    again from there (slip_yade_replica), a second history of the release. Each slip speed is one segment: --checkpoint-now keeps nothing of one under way (at
+#    most 1.5 s simulated is redone). The slip question comes first: it is the study's answer.
 # 4. The thesis' chain again from the grid with the stop rule recommended for new studies
 #    (--min-batches 3 --confidence 0.95): the time to the target as the driver achieves it (the
 #    report's figure for it so far is a replay on study_thesis), and from 14 rpm on a second history
@@ -77,6 +80,7 @@ ready() { [[ -e "$1" ]] || { echo "campaign: $1 not written yet"; false; }; }
 thesis=(--var dt 2e-5 --var exact on)
 yade=(--var dt 1e-5 --var exact off --var conventions yade)
 slip_speeds=22,23,24,25,26,27,28,29,30,31,32,33,34,35
+yade_slip_speeds=22,23,24,25,26,27,28
 
 steady --name study_thesis "${thesis[@]}" --segment 2 --cap 60
 steady --name history_21rpm_from28 --speeds 21 --start-state docs/drum/study_thesis/28rpm/state.restart.gz \
@@ -88,27 +92,38 @@ if [[ ${#now[@]} -eq 0 ]]; then
 fi
 steady --name slip_thesis --speeds "$slip_speeds" --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
   "${thesis[@]}" --segment 1.5 --cap 1.5
-if [[ ${#now[@]} -eq 0 && ! -e docs/drum/slip_yade/35rpm/run.json ]]; then
+if [[ ${#now[@]} -eq 0 && ! -e docs/drum/slip_yade/28rpm/run.json ]]; then
   # the thesis' table alone until YADE's conventions have run (slip.py below then reads both)
   "$py" tools/drum/slip.py --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
     --out docs/drum/slip_test || echo "campaign: the slip test's analysis failed (above)"
   save "Drum: the slip test at thesis scale, the thesis' table" docs/drum/slip_test.md docs/drum/slip_test.csv \
     docs/drum/slip_test.png
 fi
-steady --name slip_yade --speeds "$slip_speeds" --start-state docs/drum/slip_yade/start_state.restart.gz \
+steady --name slip_yade --speeds "$yade_slip_speeds" --start-state docs/drum/slip_yade/start_state.restart.gz \
   "${yade[@]}" --segment 1.5 --cap 1.5
-steady --name study_yade --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-  "${yade[@]}" --segment 2 --cap 40
-if [[ ${#now[@]} -eq 0 ]]; then
-  # the YADE ramp's first point: 21 rpm's steady averages once study_yade has them
-  yade_start=-
+# both conventions; rerun once study_yade has 21 rpm's steady averages (the YADE ramp's first
+# point) and once the YADE ramp's second history has run
+slip_all() {
+  local yade_start=- replica=()
   if [[ -e docs/drum/study_yade/21rpm/state.restart.gz ]]; then yade_start=study_yade:21; fi
+  if [[ -e docs/drum/slip_yade_replica/22rpm/run.json ]]; then
+    replica=(--study slip_yade_replica "YADE 1.12 conventions, second history (from 21 rpm's steady end state)"
+             --start "$yade_start")
+  fi
   "$py" tools/drum/slip.py \
     --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
     --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" --start "$yade_start" \
-    --out docs/drum/slip_test
+    "${replica[@]}" --out docs/drum/slip_test || echo "campaign: the slip test's analysis failed (above)"
   save "Drum: the slip test at thesis scale" docs/drum/slip_test.md docs/drum/slip_test.csv docs/drum/slip_test.png
+}
+if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
+steady --name study_yade --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+  "${yade[@]}" --segment 2 --cap 40
+if ready docs/drum/study_yade/21rpm/state.restart.gz; then
+  steady --name slip_yade_replica --speeds "$yade_slip_speeds" --start-state docs/drum/study_yade/21rpm/state.restart.gz \
+    "${yade[@]}" --segment 1.5 --cap 1.5
 fi
+if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 steady --name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
