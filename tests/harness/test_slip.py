@@ -315,8 +315,15 @@ class Slip(unittest.TestCase):
             # the answer's line on where each bed lets go: a release one speed before 27 -> 28
             # would not show in that step
             line = "\n".join(slip.released_line([("A", speeds), ("B", speeds), ("C", [])], [ramp, ramp[:18], []]))
-            self.assertIn("with A during 30 rpm (0.20 s into it); with B not up to 29 rpm.", line)
+            self.assertIn("with A from 0.20 s into 30 rpm, not yet half-way; with B not up to 29 rpm.", line)
             self.assertNotIn("with C", line)
+            # the same ramp three rpm lower, its released samples at 0.8 then 0.5 (the running
+            # median below 0.72 from 1.15 s, 0.25 s into 27 rpm), the sample at 0.91 kept: a release that
+            # starts before 28 rpm is flagged as lying before the 27 -> 28 step
+            lower = [(t, rpm - 3, hc, 0.5 if t >= 1.149 and turn < 0.9 else turn) for t, rpm, hc, turn in ramp]
+            line = "\n".join(slip.released_line([("L", speeds)], [lower]))
+            self.assertIn("with L from 0.20 s into 27 rpm, half-way 0.25 s into 27 rpm (before the 27 → 28 rpm step", line)
+            self.assertNotIn("before the 27", "\n".join(slip.released_line([("A", speeds)], [ramp])))
             self.assertEqual(slip.released_line([("A", speeds)], [[]]), [])
 
     def test_a_missing_start_speed_is_named(self):

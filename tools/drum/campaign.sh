@@ -21,7 +21,7 @@
 #    them: study_yade's 21 rpm state after 8 s (settled: its four 2 s means of Hc within 0.11 mm),
 #    kept as docs/drum/slip_yade/start_state.restart.gz, so the ramp need not wait for that speed's
 #    averages; study_yade then goes on from the same state to 21 rpm's averages (slip.py's first
-#    YADE row). Under YADE's conventions the bed lets go during 26 rpm, so that ramp stops at 28 rpm,
+#    YADE row). Under YADE's conventions the bed lets go during 26-27 rpm, so that ramp stops at 28 rpm,
 #    the thesis' ramp's end, which answers the 27 -> 28 rpm step. tools/drum/slip.py reads both
 #    at once. A release speed is one event of one history: so, once study_yade has 21 rpm's steady
 #    end state (about 9 s, three revolutions, after the first ramp's start), the same YADE ramp

@@ -80,6 +80,9 @@ def study_speeds(docs, name, window, batches):
 # bed_turn below which the bed no longer turns with the drum: in steady flow a carried bed has
 # 0.99-1.00, one riding on a layer of rolling beads 0.45-0.51 (docs/drum/study_thesis.csv)
 LETS_GO = 0.9
+# ... and half-way from a carried bed to one on rolling beads ((0.99 + 0.45) / 2): a release takes
+# about a second and a half, so its onset (LETS_GO) and its middle can fall in different speeds
+HALF_WAY = 0.72
 
 
 def ramp_series(docs, name):
@@ -253,21 +256,29 @@ def contrast(x, y, alpha):
 
 
 def released_line(studies, ramps):
-    """Where along its ramp each study's bed lets go of the drum (`lets_go`), in one line: a bed
-    that lets go during a speed does so before that speed's step is measured, so the 27 -> 28 rpm
-    answer alone can miss a release one speed earlier."""
+    """Where along its ramp each study's bed lets go of the drum (`lets_go`: its onset, `bed_turn`
+    below LETS_GO for good, and half-way, below HALF_WAY), in one line. A release that starts
+    before 28 rpm is under way or over when the 27 -> 28 rpm step is measured: that step then
+    measures a bed letting go or let go, not a release caused by the step."""
     parts = []
     for (label, speeds), ramp in zip(studies, ramps):
         if not ramp:
             continue
-        got = lets_go(ramp)
+        onset, half = lets_go(ramp), lets_go(ramp, HALF_WAY)
         top = max(r[1] for r in ramp)
-        parts.append(f"with {label} during {got[1]:g} rpm ({got[2]:.2f} s into it)" if got
-                     else f"with {label} not up to {top:g} rpm")
+        if not onset:
+            parts.append(f"with {label} not up to {top:g} rpm")
+            continue
+        text = f"with {label} from {onset[2]:.2f} s into {onset[1]:g} rpm"
+        text += f", half-way {half[2]:.2f} s into {half[1]:g} rpm" if half else ", not yet half-way"
+        if onset[1] < 28:
+            text += " (before the 27 → 28 rpm step, which then measures a bed letting go or let go)"
+        parts.append(text)
     if not parts:
         return []
-    return ["Along the ramp the bed lets go of the drum (`bed_turn` below " f"{LETS_GO:g} from then on): "
-            + "; ".join(parts) + ". The thesis saw its drop between 27 and 28 rpm.", ""]
+    return [f"Along the ramp the bed lets go of the drum (`bed_turn`, a running median over 5 samples, below "
+            f"{LETS_GO:g} from then on; half-way: below {HALF_WAY:g}): " + "; ".join(parts)
+            + ". The thesis saw its drop between 27 and 28 rpm.", ""]
 
 
 def answer_section(studies, alpha, ramps=None):
@@ -364,8 +375,11 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
         released = lets_go(ramp)
         if released:
             t, rpm, into = released
+            half = lets_go(ramp, HALF_WAY)
             lines += [f"The bed lets go of the drum (`bed_turn`, a running median over 5 samples, below {LETS_GO:g} "
-                      f"from then on) at {t:.2f} s, {into:.2f} s into {rpm:g} rpm.", ""]
+                      f"from then on) at {t:.2f} s, {into:.2f} s into {rpm:g} rpm"
+                      + (f"; half-way (below {HALF_WAY:g}) {half[2]:.2f} s into {half[1]:g} rpm." if half else
+                         f"; not yet half-way (below {HALF_WAY:g}).") + "", ""]
         elif ramp:
             lines += [f"The bed turns with the drum throughout (`bed_turn` never stays below {LETS_GO:g}).", ""]
         if first:
@@ -416,6 +430,7 @@ def chart(studies, path, ramps=None):
     axes[2].set_ylabel("centre of mass Hc [mm]")
     axes[3].set_ylabel("bed turn")
     axes[3].axhline(LETS_GO, color="grey", ls="--", lw=0.8)
+    axes[3].axhline(HALF_WAY, color="grey", ls=":", lw=0.8)
     for ax in axes[:2]:
         ax.set_xlabel("drum speed [rpm]")
     for ax in axes[2:]:
