@@ -54,8 +54,8 @@ def run(args):
     two = {mode: two_body(ratios, mode) for mode in ("off", "on")}
 
     def drum(tag, ratio, **v):
-        return harness.drum(harness.post(f"accuracy/{tag}.log"), np=args.np, start="restart", restart=args.restart,
-                            rpm=common.RPM, dt=common.dt_of(ratio), name=f"accuracy/{tag}", **common.MESH, **v)
+        return harness.drum(harness.post(f"accuracy/{tag}.log"), np=args.np, **common.then(
+            start="restart", restart=args.restart, rpm=common.RPM, dt=common.dt_of(ratio), name=f"accuracy/{tag}", **v))
 
     logs = harness.interleaved({r: (lambda r=r: drum(f"time_{r:g}", r, time=args.span, dumpdt=1)) for r in ratios},
                                args.rounds, progress=lambda s: harness.say("accuracy", "timing " + s))

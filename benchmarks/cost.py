@@ -19,7 +19,7 @@ import common  # noqa: E402
 
 MODELS = ("viscoelastic", "hooke")
 SETTLE_TIME = 1.0  # s from the grid when no --restart is given
-TIMESTEP_RATIO = 10  # dt = tc/10, drum.in's default
+TIMESTEP_RATIO = 10  # dt = tc/10, drum.in's default when measured (common.THEN)
 
 
 def parser():
@@ -32,8 +32,8 @@ def parser():
 
 def settle_slab():
     harness.say("cost", f"settling a slab ({SETTLE_TIME} s at {common.RPM} rpm from the grid) ...")
-    harness.drum(harness.post("bench/slab.log"), time=SETTLE_TIME, dumpdt=SETTLE_TIME, rpm=common.RPM,
-                 name="bench/slab", **common.MESH)
+    harness.drum(harness.post("bench/slab.log"), **common.then(time=SETTLE_TIME, dumpdt=SETTLE_TIME, rpm=common.RPM,
+                                                               name="bench/slab"))
     return harness.post("bench/slab.restart")
 
 
@@ -44,9 +44,9 @@ def run(args):
 
     def drum(tag, model, steps, dumps):
         span = steps * dt
-        return harness.drum(harness.post(f"bench/{tag}.log"), np=args.np, start="restart", restart=restart,
-                            rpm=common.RPM, dt=dt, time=f"{span:.10g}", dumpdt=f"{span if dumps else 10 * span:.10g}",
-                            model=model, stock=stock, name=f"bench/{tag}", **common.MESH)
+        return harness.drum(harness.post(f"bench/{tag}.log"), np=args.np, **common.then(
+            start="restart", restart=restart, rpm=common.RPM, dt=dt, time=f"{span:.10g}",
+            dumpdt=f"{span if dumps else 10 * span:.10g}", model=model, stock=stock, name=f"bench/{tag}"))
 
     harness.say("cost", f"force check over {args.check} steps ...")
     for model in MODELS:

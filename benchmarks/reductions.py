@@ -42,13 +42,13 @@ def run(args):
         name = state(p)
         if not args.cost_only:
             harness.say("reductions", f"{p * 1e3:g} mm period, {args.time} s from the grid ...")
-            harness.drum(harness.post(name + ".log"), np=args.np, period=p, rpm=common.RPM, dt=dt, time=args.time, name=name, **common.MESH)
+            harness.drum(harness.post(name + ".log"), np=args.np,
+                         **common.then(period=p, rpm=common.RPM, dt=dt, time=args.time, name=name))
         averages[p] = common.window_average(harness.post(name), dt, skip=args.skip)
     logs = harness.interleaved(
-        {p: (lambda p=p: harness.drum(harness.post(f"reduce/time_L{round(p * 1000)}.log"), np=args.np, period=p,
-                                      rpm=common.RPM, dt=dt, time=args.span, dumpdt=1, start="restart",
-                                      restart=harness.post(state(p) + ".restart"), name=f"reduce/time_L{round(p * 1000)}",
-                                      **common.MESH))
+        {p: (lambda p=p: harness.drum(harness.post(f"reduce/time_L{round(p * 1000)}.log"), np=args.np, **common.then(
+            period=p, rpm=common.RPM, dt=dt, time=args.span, dumpdt=1, start="restart",
+            restart=harness.post(state(p) + ".restart"), name=f"reduce/time_L{round(p * 1000)}")))
          for p in periods}, args.rounds, progress=lambda s: harness.say("reductions", "timing " + s))
     rows = []
     for p in periods:

@@ -102,8 +102,9 @@ def readme(res, note):
             "by `benchmarks/run.py --readme-only`. " + machine + "\n"
             "These machines are shared: every comparison is a ratio of runs interleaved in one invocation.\n"
             "The reduced-scene start states (`post/ramp/ramp_21rpm.restart`, `post/sweep/sweep_21rpm.restart`)\n"
-            "are made by `tools/drum/study.py` with the commands listed in `tools/drum/collect.py` (on the\n"
-            "surface-velocity mesh with a 0.5 d skin, as the benchmarks run: `MESH` in `benchmarks/common.py`);\n"
+            "are made by `tools/drum/study.py` with the commands listed in `tools/drum/collect.py`; those\n"
+            "benchmarks pass drum.in's defaults of the day they were measured (`THEN` in\n"
+            "`benchmarks/common.py`: the slab at tc/10, nominal, on the surface-velocity mesh), so a rerun repeats them;\n"
             "the other sections name theirs (the newest full-scene one is the shipped\n"
             "`inputs/drum_L24_21rpm.restart.gz`, gunzipped).\n")
     for heading, modules in PAGE:

@@ -32,9 +32,9 @@ def run(args):
 
     def on(n):
         tag = f"scaling/np{n}"
-        return lambda: harness.drum(harness.post(tag + ".log"), np=n, period=args.period, rpm=common.RPM,
-                                    dt=common.dt_of(10), time=args.time, dumpdt=1000, start="restart",
-                                    restart=args.restart, name=tag, **common.MESH)
+        return lambda: harness.drum(harness.post(tag + ".log"), np=n, **common.then(
+            period=args.period, rpm=common.RPM, dt=common.dt_of(10), time=args.time, dumpdt=1000, start="restart",
+            restart=args.restart, name=tag))
 
     logs = harness.interleaved({n: on(n) for n in ranks}, args.rounds, progress=lambda s: harness.say("scaling", s))
     rows = [{"ranks": n, "round": i + 1, "loop_seconds": lg.loop_time, "steps": lg.steps, "atoms": lg.atoms,

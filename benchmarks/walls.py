@@ -33,9 +33,9 @@ def run(args):
     def drum(wall, segments):
         tag = f"walls/{wall}_{segments}"
         common.remove_snapshots(harness.post(tag))
-        return harness.drum(harness.post(tag + ".log"), np=args.np, period=args.period, rpm=common.RPM, dt=dt,
-                            time=args.time, dumpdt=args.snapshot_dt, start="restart", restart=args.restart, wall=wall, segments=segments, name=tag,
-                            skin=common.MESH["skin"])
+        return harness.drum(harness.post(tag + ".log"), np=args.np, **common.then(
+            period=args.period, rpm=common.RPM, dt=dt, time=args.time, dumpdt=args.snapshot_dt, start="restart",
+            restart=args.restart, wall=wall, segments=segments, name=tag))
 
     averages = {}
 

@@ -10,13 +10,16 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import common  # noqa: E402
 import harness  # noqa: E402
 
 
 def main(state, time, period, cores, name, round_):
     tag = f"{name}_r{round_}"
-    harness.drum(harness.post(tag + ".log"), np=int(cores), start="restart", restart=f"{state}.restart", period=period,
-                 rpm=21, wall="moving", skin=0.5, conventions="yade", time=time, dumpdt=1, name=tag)  # skin: as measured
+    harness.drum(harness.post(tag + ".log"), np=int(cores), **common.then(
+        start="restart", restart=f"{state}.restart", period=period, rpm=21, wall="moving", conventions="yade",
+        time=time, dumpdt=1, name=tag))
 
 
 if __name__ == "__main__":

@@ -324,6 +324,22 @@ class Slip(unittest.TestCase):
             line = "\n".join(slip.released_line([("L", speeds)], [lower]))
             self.assertIn("with L from 0.20 s into 27 rpm, half-way 0.25 s into 27 rpm (before the 27 → 28 rpm step", line)
             self.assertNotIn("before the 27", "\n".join(slip.released_line([("A", speeds)], [ramp])))
+            # a release from 28 rpm on is not before the step; the per-study line gives the
+            # half-way point too
+            at28 = [(t, rpm + 1, hc, turn) for t, rpm, hc, turn in lower]
+            self.assertIn("from 0.20 s into 28 rpm, half-way 0.25 s into 28 rpm.",
+                          "\n".join(slip.released_line([("M", speeds)], [at28])))
+            self.assertIn("0.20 s into 27 rpm; half-way (below 0.72) 0.25 s into 27 rpm.",
+                          slip.markdown([("L", speeds)], 0.5, 3, 0.05, "x", ramps=[lower]))
+            self.assertIn("0.20 s into 30 rpm; not yet half-way (below 0.72).",
+                          slip.markdown([("A", speeds)], 0.5, 3, 0.05, "x", ramps=[ramp]))
+            # and the answer carries the line where ramps are given
+            two = [(27.0, {"Hc_m": (0.0, 1e-4)}, 1.5, 3), (28.0, {"Hc_m": (-2e-3, 1e-4)}, 1.5, 3)]
+            text = "\n".join(slip.answer_section([("L", two), ("B", two)], 0.05, [lower, []]))
+            self.assertIn("## Answer: 27 → 28 rpm", text)
+            self.assertIn("Along the ramp the bed lets go of the drum", text)
+            self.assertIn("with L from 0.20 s into 27 rpm", text)
+            self.assertNotIn("Along the ramp", "\n".join(slip.answer_section([("L", two), ("B", two)], 0.05)))
             self.assertEqual(slip.released_line([("A", speeds)], [[]]), [])
 
     def test_a_missing_start_speed_is_named(self):

@@ -24,9 +24,10 @@
 #    YADE row). Under YADE's conventions the bed lets go during 26-27 rpm, so that ramp stops at 28 rpm,
 #    the thesis' ramp's end, which answers the 27 -> 28 rpm step. tools/drum/slip.py reads both
 #    at once. A release speed is one event of one history: so, once study_yade has 21 rpm's steady
-#    end state (about 9 s, three revolutions, after the first ramp's start), the same YADE ramp
-#    again from there (slip_yade_replica), a second history of the release. Each slip speed is one segment: --checkpoint-now keeps nothing of one under way (at
-#    most 1.5 s simulated is redone). The slip question comes first: it is the study's answer.
+#    end state (later in the same steady flow than the first ramp's start), the same YADE ramp
+#    again from there (slip_yade_replica), a second history of the release. Each slip speed is
+#    one segment: --checkpoint-now keeps nothing of one under way (at most 1.5 s simulated is
+#    redone). The slip question comes first: it is the study's answer.
 # 4. The thesis' chain again from the grid with the stop rule recommended for new studies
 #    (--min-batches 3 --confidence 0.95): the time to the target as the driver achieves it (the
 #    report's figure for it so far is a replay on study_thesis), and from 14 rpm on a second history

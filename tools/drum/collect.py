@@ -2,13 +2,12 @@
 """Regenerates docs/drum/README.md and docs/drum/speeds_and_ramp.md from the drum studies in post/.
 
 Inputs (made by tools/drum/study.py; each study's settings and command from post/NAME/study.json;
-they ran on the static mesh with a surface velocity and a 0.5 d skin, drum.in's defaults then):
+they ran with drum.in's defaults then, which `V` below repeats: V = --var dt 1e-5 --var exact off
+--var dumpdt 0.02 --var balance off --var wall surface --var skin 0.5, as `THEN` in benchmarks/common.py):
   post/SWEEP/   the speed chain with --yade RPM, e.g.
-                tools/drum/study.py --speeds 7,14,21,28,35,42 --time 1.2 --settle 0.8 --name sweep --yade 21 \
-                    --var wall surface --var skin 0.5
-  post/HIGH/    the faster speeds:  tools/drum/study.py --speeds 42,49,56,63 --time 1.2 --settle 0.8 --name high --var wall surface --var skin 0.5
-  post/RAMP/    the ramp:           tools/drum/study.py --speeds 21 --time 1.2 --settle 0.8 --ramp 21:28:3 --name ramp \
-                    --var wall surface --var skin 0.5
+                tools/drum/study.py --speeds 7,14,21,28,35,42 --time 1.2 --settle 0.8 --name sweep --yade 21 V
+  post/HIGH/    the faster speeds:  tools/drum/study.py --speeds 42,49,56,63 --time 1.2 --settle 0.8 --name high V
+  post/RAMP/    the ramp:           tools/drum/study.py --speeds 21 --time 1.2 --settle 0.8 --ramp 21:28:3 --name ramp V
 The drum wall study and the parallel runs are benchmarks (benchmarks/walls.py, scaling.py):
 benchmarks/README.md shows them; the documents here link to it.
 Tables are read from the studies' *_average.csv by column name; the chart of all speeds is

@@ -21,6 +21,7 @@ falling below 1 and the drum contacts' rolling (`wall_roll`) and slip (`wall_sli
 
 import argparse
 import math
+import shlex
 import statistics
 import sys
 from pathlib import Path
@@ -282,7 +283,7 @@ def released_line(studies, ramps):
 
 
 def answer_section(studies, alpha, ramps=None):
-    """The issue's question for two (or more) sets of conventions: does Hc drop between 27 and 28
+    """The question for two (or more) sets of conventions: does Hc drop between 27 and 28
     rpm with one and not the other? Each study's step by its own test; "one and not the other"
     only where the two steps also differ (their contrast): else the runs do not tell the
     conventions apart at this step, whatever the single tests say. With `ramps` (one per study,
@@ -475,7 +476,7 @@ def main(argv=None):
         block = statistics.median(runs)
         null = (a.null, block, null_rate(docs, a.null, block, a.window, a.batches, a.alpha))
     out = Path(a.out)
-    command = "tools/drum/slip.py " + " ".join(f"--study {n} '{l}'" for n, l in a.study) + "".join(
+    command = "tools/drum/slip.py " + " ".join(f"--study {n} {shlex.quote(l)}" for n, l in a.study) + "".join(
         f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
         f" --null {a.null}" if a.null != "study_thesis" else "")
     ramps = [ramp_series(docs, name) for name, _ in a.study]
