@@ -57,7 +57,7 @@ def run(args):
     for c in (int(x) for x in common.numbers(args.cores)):
         harness.say("peers", f"{c} core(s), {args.rounds} interleaved rounds (YADE's first step takes minutes) ...")
         name = f"peers/liggghts_np{c}"
-        before = f"{HERE / 'yade/liggghts_round.py'} {args.state} {time} {args.period:g} {c} {name}"
+        before = f"{HERE / 'yade/liggghts_round.py'} {args.state} {time} {args.period:g} {dt:g} {c} {name}"
         output = harness.tool("yade", "-n", "-x", f"-j{c}", HERE / "yade/drum_yade.py", beads_csv, f"period={args.period:g}",
                               f"steps={args.steps}", f"rpm={common.RPM}", f"dt={dt:g}", f"rounds={args.rounds}",
                               f"before={before}")

@@ -11,7 +11,8 @@
   drum    the settled 6 mm slab (--restart; `settled`: the shipped 24 mm thesis scene) at 21 rpm
           continued for --drum-time s at each dt, the --drum-runs en:model[:law] specs (en `table` =
           Table 3.1 with the thesis conventions; law, with model viscoelastic: nominal,
-          exactRestitution or exactCollision, with tangential pournin; without: drum.in's default). Failure:
+          exactRestitution or exactCollision, with tangential pournin; without: the nominal law, as
+          drum.in's defaults were when the plain rows were measured, common.THEN). Failure:
           the run stops (beads leave through the drum wall), beads are missing at the end, or the
           kinetic energy ends above twice that of the same pair at the reference dt/tc.
 The guard's limits come from `contact_law limit`. --append merges the rows into the existing
@@ -120,12 +121,11 @@ def drum(args):
     fractions = common.numbers(args.drum_fractions)
     fractions = [args.reference] + [f for f in fractions if f != args.reference]
     rows = []
-    # the nominal law on the benchmarks' mesh unless a law says otherwise (drum.in's defaults when the
-    # plain rows were measured; exact is now auto, on with the thesis' table); the rank cut is left
-    # to drum.in (it moves no bead)
-    start = ({**common.MESH, "exact": "off", "start": "settled"} if str(args.restart) == "settled" else
-             {**common.MESH, "exact": "off", "start": "restart", "restart": args.restart,
-              "period": common.THEN["period"]})
+    # drum.in's defaults when the plain rows were measured (common.THEN: the nominal law unless a
+    # law says otherwise, the slab's period, the middle cut); the later sets (stability_drum_long,
+    # stability_drum_exact) ran with the cut at the beds' median, which changes round-off only
+    start = (common.then(start="settled", period=0.024) if str(args.restart) == "settled" else
+             common.then(start="restart", restart=args.restart))
     if args.drum_period:
         start["period"] = args.drum_period
     for spec in common.words(args.drum_runs):
@@ -191,7 +191,8 @@ def run(args):
         meta.update({"column_time_s": args.column_time, "column_energy_factor": args.column_energy_factor,
                      "settle_ratio": 10, "reference": args.reference, "loads": args.loads})
     meta.update({"drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()})
-    drum_meta = {"drum_time_s": args.drum_time, "drum_restart": str(args.restart), "drum_period": args.drum_period,
+    drum_meta = {"drum_time_s": args.drum_time, "drum_restart": str(args.restart),
+                 "drum_period": args.drum_period or (0.024 if str(args.restart) == "settled" else common.THEN["period"]),
                  "reference": args.reference,
                  "drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()}
     if "drum" in scenes and args.drum_name != "stability_drum":

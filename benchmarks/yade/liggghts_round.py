@@ -4,7 +4,7 @@ appends the round number) before each of YADE's timed rounds: the settled state 
 the rotating mesh and YADE's mixing rules, its log at NAME_r<ROUND>.log under post/ (peers.py
 reads the loop time from it).
 
-  benchmarks/yade/liggghts_round.py STATE TIME PERIOD CORES NAME ROUND"""
+  benchmarks/yade/liggghts_round.py STATE TIME PERIOD DT CORES NAME ROUND   (DT: YADE's, the same)"""
 
 import sys
 from pathlib import Path
@@ -15,14 +15,14 @@ import common  # noqa: E402
 import harness  # noqa: E402
 
 
-def main(state, time, period, cores, name, round_):
+def main(state, time, period, dt, cores, name, round_):
     tag = f"{name}_r{round_}"
     harness.drum(harness.post(tag + ".log"), np=int(cores), **common.then(
-        start="restart", restart=f"{state}.restart", period=period, rpm=21, wall="moving", conventions="yade",
+        start="restart", restart=f"{state}.restart", period=period, dt=dt, rpm=21, wall="moving", conventions="yade",
         time=time, dumpdt=1, name=tag))
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 7:
+    if len(sys.argv) != 8:
         sys.exit(__doc__)
     main(*sys.argv[1:])
