@@ -198,7 +198,7 @@ def markdown(name, rows, reached=()):
     for r in rows:
         lines.append(f"| {r['rpm']:g} | {pm(r, 'Hh_m', 'Hh_se_m', 1e3, 1)} | {pm(r, 'Hd_m', 'Hd_se_m', 1e3, 1)} | "
                      f"{pm(r, 'Hc_m', 'Hc_se_m', 1e3, 2)} | {pm(r, 'angle_deg', 'angle_se_deg', 1.0, 2)} | "
-                     f"{pm(r, 'drum_force_N', 'drum_force_se_N', 1e3, 3)} | {float(r['settle_s']):.1f} | "
+                     f"{pm(r, 'drum_force_N', 'drum_force_se_N', 1e3, 3)} | {round(float(r['settle_s']), 6) + 0.0:.1f} | "
                      f"{float(r['average_s']):.1f} | {float(r['revolutions']):.1f} | "
                      f"{'yes' if r['done'] in (True, 1.0, 'True', 'true', '1') else 'capped'} |")
     lines += ["", "## The thesis' findings beside these averages", "",
