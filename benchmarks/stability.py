@@ -117,6 +117,11 @@ def column(ens, fractions, args):
     return rows
 
 
+def drum_period(args):
+    """drum.in's period for the drum runs: --drum-period, else the shipped scene's or the slab's."""
+    return args.drum_period or (0.024 if str(args.restart) == "settled" else common.THEN["period"])
+
+
 def drum(args):
     fractions = common.numbers(args.drum_fractions)
     fractions = [args.reference] + [f for f in fractions if f != args.reference]
@@ -124,10 +129,8 @@ def drum(args):
     # drum.in's defaults when the plain rows were measured (common.THEN: the nominal law unless a
     # law says otherwise, the slab's period, the middle cut); the later sets (stability_drum_long,
     # stability_drum_exact) ran with the cut at the beds' median, which changes round-off only
-    start = (common.then(start="settled", period=0.024) if str(args.restart) == "settled" else
-             common.then(start="restart", restart=args.restart))
-    if args.drum_period:
-        start["period"] = args.drum_period
+    start = (common.then(start="settled", period=drum_period(args)) if str(args.restart) == "settled" else
+             common.then(start="restart", restart=args.restart, period=drum_period(args)))
     for spec in common.words(args.drum_runs):
         en, model, *law = spec.split(":")
         stock = common.stock_file(harness.post(f"stability_drum/stock_{en}.in"),
@@ -192,7 +195,7 @@ def run(args):
                      "settle_ratio": 10, "reference": args.reference, "loads": args.loads})
     meta.update({"drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()})
     drum_meta = {"drum_time_s": args.drum_time, "drum_restart": str(args.restart),
-                 "drum_period": args.drum_period or (0.024 if str(args.restart) == "settled" else common.THEN["period"]),
+                 "drum_period": drum_period(args),
                  "reference": args.reference,
                  "drum_energy_factor": DRUM_ENERGY_FACTOR, "date": common.today()}
     if "drum" in scenes and args.drum_name != "stability_drum":

@@ -380,7 +380,7 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
             lines += [f"The bed lets go of the drum (`bed_turn`, a running median over 5 samples, below {LETS_GO:g} "
                       f"from then on) at {t:.2f} s, {into:.2f} s into {rpm:g} rpm"
                       + (f"; half-way (below {HALF_WAY:g}) {half[2]:.2f} s into {half[1]:g} rpm." if half else
-                         f"; not yet half-way (below {HALF_WAY:g}).") + "", ""]
+                         f"; not yet half-way (below {HALF_WAY:g})."), ""]
         elif ramp:
             lines += [f"The bed turns with the drum throughout (`bed_turn` never stays below {LETS_GO:g}).", ""]
         if first:
