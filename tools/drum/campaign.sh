@@ -93,13 +93,6 @@ if [[ ${#now[@]} -eq 0 ]]; then
 fi
 steady --name slip_thesis --speeds "$slip_speeds" --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
   "${thesis[@]}" --segment 1.5 --cap 1.5
-if [[ ${#now[@]} -eq 0 && ! -e docs/drum/slip_yade/28rpm/run.json ]]; then
-  # the thesis' table alone until YADE's conventions have run (slip.py below then reads both)
-  "$py" tools/drum/slip.py --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
-    --out docs/drum/slip_test || echo "campaign: the slip test's analysis failed (above)"
-  save "Drum: the slip test at thesis scale, the thesis' table" docs/drum/slip_test.md docs/drum/slip_test.csv \
-    docs/drum/slip_test.png
-fi
 steady --name slip_yade --speeds "$yade_slip_speeds" --start-state docs/drum/slip_yade/start_state.restart.gz \
   "${yade[@]}" --segment 1.5 --cap 1.5
 # both conventions; rerun once study_yade has 21 rpm's steady averages (the YADE ramp's first
