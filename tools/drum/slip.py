@@ -256,29 +256,41 @@ def contrast(x, y, alpha):
     return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
 
 
+# how "lets go" is read off `bed_turn`, said once for both texts that use it
+RELEASE_RULE = (f"`bed_turn`, a running median over 5 samples, below {LETS_GO:g} from then on; "
+                f"half-way: below {HALF_WAY:g}")
+
+
+def release(ramp):
+    """Where along a ramp the bed lets go (`lets_go`: its onset, `bed_turn` below LETS_GO for
+    good, and half-way, below HALF_WAY) as (onset, text), or None where it never does."""
+    onset, half = lets_go(ramp), lets_go(ramp, HALF_WAY)
+    if not onset:
+        return None
+    text = f"from {onset[2]:.2f} s into {onset[1]:g} rpm"
+    text += f", half-way {half[2]:.2f} s into {half[1]:g} rpm" if half else ", not yet half-way"
+    return onset, text
+
+
 def released_line(studies, ramps):
-    """Where along its ramp each study's bed lets go of the drum (`lets_go`: its onset, `bed_turn`
-    below LETS_GO for good, and half-way, below HALF_WAY), in one line. A release that starts
-    before 28 rpm is under way or over when the 27 -> 28 rpm step is measured: that step then
-    measures a bed letting go or let go, not a release caused by the step."""
+    """Where along its ramp each study's bed lets go of the drum, in one line. A release that
+    starts before 28 rpm is under way or over when the 27 -> 28 rpm step is measured: that step
+    then measures a bed letting go or let go, not a release caused by the step."""
     parts = []
     for (label, speeds), ramp in zip(studies, ramps):
         if not ramp:
             continue
-        onset, half = lets_go(ramp), lets_go(ramp, HALF_WAY)
-        top = max(r[1] for r in ramp)
-        if not onset:
-            parts.append(f"with {label} not up to {top:g} rpm")
+        got = release(ramp)
+        if not got:
+            parts.append(f"with {label} not up to {max(r[1] for r in ramp):g} rpm")
             continue
-        text = f"with {label} from {onset[2]:.2f} s into {onset[1]:g} rpm"
-        text += f", half-way {half[2]:.2f} s into {half[1]:g} rpm" if half else ", not yet half-way"
+        onset, text = got
         if onset[1] < 28:
             text += " (before the 27 → 28 rpm step, which then measures a bed letting go or let go)"
-        parts.append(text)
+        parts.append(f"with {label} {text}")
     if not parts:
         return []
-    return [f"Along the ramp the bed lets go of the drum (`bed_turn`, a running median over 5 samples, below "
-            f"{LETS_GO:g} from then on; half-way: below {HALF_WAY:g}): " + "; ".join(parts)
+    return [f"Along the ramp the bed lets go of the drum ({RELEASE_RULE}): " + "; ".join(parts)
             + ". The thesis saw its drop between 27 and 28 rpm.", ""]
 
 
@@ -373,14 +385,10 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
         else:
             lines += ["27 → 28 rpm: not run yet.", ""]
         ramp = ramps[k] if ramps else []
-        released = lets_go(ramp)
+        released = release(ramp)
         if released:
-            t, rpm, into = released
-            half = lets_go(ramp, HALF_WAY)
-            lines += [f"The bed lets go of the drum (`bed_turn`, a running median over 5 samples, below {LETS_GO:g} "
-                      f"from then on) at {t:.2f} s, {into:.2f} s into {rpm:g} rpm"
-                      + (f"; half-way (below {HALF_WAY:g}) {half[2]:.2f} s into {half[1]:g} rpm." if half else
-                         f"; not yet half-way (below {HALF_WAY:g})."), ""]
+            (t, _, _), text = released
+            lines += [f"The bed lets go of the drum ({RELEASE_RULE}) at simulated time {t:.2f} s, {text}.", ""]
         elif ramp:
             lines += [f"The bed turns with the drum throughout (`bed_turn` never stays below {LETS_GO:g}).", ""]
         if first:
