@@ -384,10 +384,11 @@ class Study:
         average = harness.read_csv(out / "series_average.csv")[0]
         steady_from = average["steady_from_s"]
         t_end = max(s for s, _ in harness.snapshots(self.prefix(rpm))) * self.dt
-        averaged = t_end - steady_from if not math.isnan(steady_from) else float("nan")
+        # times are whole steps of dt: rounded to 1 ns so that a difference of two of them reads 0, not -7e-15
+        averaged = round(t_end - steady_from, 9) if not math.isnan(steady_from) else float("nan")
         row = {"rpm": rpm, "conventions": a.variables.get("conventions", "thesis"),
                "wall": a.variables.get("wall") or study.drum_default("wall"), "period_m": float(a.period), "beads": done["beads"],
-               "dt_s": self.dt, "settle_s": steady_from - (t_end - done["simulated_s"]), "average_s": averaged,
+               "dt_s": self.dt, "settle_s": round(steady_from - (t_end - done["simulated_s"]), 9), "average_s": averaged,
                "revolutions": averaged / revolution(rpm), "batches": average.get("batches", float("nan")),
                "done": outcome == "done", "cpu_hours": done["cpu_s"] / 3600}
         for m in harness.drum_metric_table():
