@@ -167,6 +167,36 @@ class Slip(unittest.TestCase):
             self.assertEqual(len(rows), 16)
             self.assertGreater(out.with_suffix(".png").stat().st_size, 10000)
 
+    def test_the_step_by_window(self):
+        """A step the speed change causes reads the same with every window; one that is the tail
+        of a transient (27 rpm still falling through its run, 28 rpm flat at where it ended) grows
+        with the window as the fall predicts: the last m of n samples at 27 rpm average
+        -0.095 - 0.005 (2n - 1 - m) / (2 (n - 1)), so the step is -5 (m - 1) / (2 (n - 1)) mm
+        (0.1 mm noise: within 0.15 mm), and on a short window it is "no change"."""
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            n, rng = 30, random.Random(7)
+            for name, at27 in (("clean", lambda k: -0.097), ("tail", lambda k: -0.095 - 0.005 * k / (n - 1))):
+                for rpm, level in ((27, at27), (28, lambda k: -0.100)):
+                    write_series(docs, name, rpm, [
+                        {"time_s": 0.05 * k, "Hh_m": 0.09, "Hc_m": level(k) + rng.gauss(0.0, 1e-4),
+                         "angle_deg": 30.0, "bed_turn_1": 1.0, "wall_roll_1": 0.02, "wall_slip_1": 0.002}
+                        for k in range(n)])
+            lines = slip.window_section(docs, ["clean", "tail"], ["clean", "tail"], 3, 0.05)
+            clean = next(row for row in lines if row.startswith("| clean |")).rstrip(" |").split(" | ")[1:]
+            tail = next(row for row in lines if row.startswith("| tail |")).rstrip(" |").split(" | ")[1:]
+            self.assertEqual(len(clean), len(slip.WINDOWS))
+            self.assertTrue(all(cell.startswith(("drops (-3.0", "drops (-2.9")) for cell in clean), clean)
+            self.assertEqual(len(tail), len(slip.WINDOWS))
+            for window, cell in zip(slip.WINDOWS, tail):
+                m = max(1, round(window * n))
+                self.assertAlmostEqual(float(cell.split("(")[1].split(" ")[0]), -5.0 * (m - 1) / (2 * (n - 1)),
+                                       delta=0.15, msg=cell)
+            self.assertEqual(slip.WINDOWS[0], 0.3)
+            self.assertTrue(tail[0].startswith("no change"), tail)
+            # a study without 27 and 28 rpm has no row; none at all, no section
+            self.assertEqual(slip.window_section(docs, ["none"], ["none"], 3, 0.05), [])
+
     def test_false_alarms_and_power_of_a_step(self):
         # two windows of one state (white noise, 30 snapshots, the last 15 in 3 batches): the
         # t-test at 0.05 calls at most about 5 % of them a change (binomial sd 0.5 % over 2000 pairs; a

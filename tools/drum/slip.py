@@ -339,6 +339,35 @@ def answer_section(studies, alpha, ramps=None):
     return lines + released_line(studies, ramps or [])
 
 
+# the windows the 27 -> 28 rpm answer is read again with: how much of it rests on the choice
+WINDOWS = (0.3, 0.4, 0.5, 0.7, 1.0)
+
+
+def window_section(docs, names, labels, batches, alpha):
+    """The 27 -> 28 rpm step of Hc per study, read with each of WINDOWS: a step that is the tail
+    of a transient (its first speed still drifting) changes verdict with the window; a step the
+    speed change causes does not."""
+    lines = []
+    for name, label in zip(names, labels):
+        cells = []
+        for window in WINDOWS:
+            got = step_change(study_speeds(docs, name, window, batches), "Hc_m")
+            if not got:
+                break
+            diff, _, parts = got
+            verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
+            cells.append(f"{verdict} ({diff * 1e3:+.2f} ± {critical * 1e3:.2f})" if verdict != "?" else "?")
+        if len(cells) == len(WINDOWS):
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    if not lines:
+        return []
+    return (["## The 27 → 28 rpm step by window", "",
+             "Hc's step [mm] with each fraction of the runs averaged (the last part of each speed's run; "
+             f"{batches} batches, {1.0 - alpha:.0%} interval):", "",
+             "| study | " + " | ".join(f"last {w:g}" for w in WINDOWS) + " |", "|---|" + "---|" * len(WINDOWS)]
+            + lines + [""])
+
+
 def first_drop(step_rows):
     """The first step at which Hc drops: (from, to, difference, critical), or None."""
     for x, y, label, verdict, diff, critical in step_rows:
@@ -347,7 +376,7 @@ def first_drop(step_rows):
     return None
 
 
-def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
+def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=()):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
@@ -372,7 +401,7 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None):
                   + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
                   "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
                   ""]
-    lines += answer_section(studies, alpha, ramps)
+    lines += answer_section(studies, alpha, ramps) + list(windows)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
@@ -488,7 +517,8 @@ def main(argv=None):
         f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
         f" --null {a.null}" if a.null != "study_thesis" else "")
     ramps = [ramp_series(docs, name) for name, _ in a.study]
-    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps))
+    windows = window_section(docs, [n for n, _ in a.study], [l for _, l in a.study], a.batches, a.alpha)
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps, windows))
     rows = []
     for label, speeds in studies:
         for rpm, avg, seconds, batches in speeds:
