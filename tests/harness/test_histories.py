@@ -27,8 +27,9 @@ def history(rng, offsets, batches=5, sigma=1.0):
 class Histories(unittest.TestCase):
     def test_verdict_names_what_differs(self):
         self.assertIn("DISAGREE", histories.verdict(False))
-        self.assertIn("DIFFER", histories.verdict(False, timesteps=True))
-        self.assertIn("agree", histories.verdict(True, timesteps=True))
+        self.assertIn("DIFFER", histories.verdict(False, "timesteps"))
+        self.assertIn("agree", histories.verdict(True, "timesteps"))
+        self.assertIn("conventions DIFFER", histories.verdict(False, "conventions"))
 
     def test_welch_dof_of_equal_sides_is_the_pooled_count(self):
         self.assertAlmostEqual(histories.welch_dof(0.3, 5, 0.3, 5), 8.0)

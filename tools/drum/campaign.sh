@@ -33,7 +33,8 @@
 #    report's figure for it so far is a replay on study_thesis), and from 14 rpm on a second history
 #    of each speed (each starts from a state study_thesis did not pass through), set against
 #    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/). Then study_yade goes
-#    on to 28 and 35 rpm.
+#    on to 28 and 35 rpm, each steady YADE speed set against the thesis' table at that speed
+#    (histories.py --conventions: docs/drum/conventions_<rpm>rpm.md).
 # 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
 #    (1.23e-6 s) with the nominal law, to a steady state with the recommended rule (3 revolutions
 #    at least, the standard errors' 95 % bound within the targets: a 3-batch estimate alone is no
@@ -130,6 +131,16 @@ fi
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
   steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     "${yade[@]}" --segment 2 --cap 40
+fi
+if [[ ${#now[@]} -eq 0 ]]; then
+  # each steady YADE speed against the thesis' table at the same speed (a difference: the conventions')
+  for rpm in 21 28 35; do
+    if grep -q "^$rpm," docs/drum/study_yade.csv; then
+      "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_yade.csv --rpm "$rpm" --conventions \
+        --out "docs/drum/conventions_${rpm}rpm.md" || true  # exits 1 where they differ: the answer, in the file
+    fi
+  done
+  save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
 fi
 for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
   IFS=: read -r step label segment <<< "$dt"

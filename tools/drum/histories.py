@@ -89,10 +89,17 @@ def compare(a, b, metrics, alpha=0.05, power=None):
     return rows
 
 
-def verdict(agree, timesteps=False):
-    if timesteps:
+def verdict(agree, kind="histories"):
+    """The sentence for the check's outcome: two histories of one state (a difference is a failure
+    of the error bars), or one state at two timesteps, or under two sets of conventions (a
+    difference is the change's effect)."""
+    if kind == "timesteps":
         return ("The two timesteps agree within the error bars." if agree else
                 "The two timesteps DIFFER beyond the error bars: the timestep changes the result.")
+    if kind == "conventions":
+        return ("The two sets of conventions agree within the error bars." if agree else
+                "The two sets of conventions DIFFER beyond the error bars (rows marked **no**): they change "
+                "the result there.")
     return ("The histories agree within their error bars." if agree else
             "The histories DISAGREE: the error bars or the steady-state detection do not hold.")
 
@@ -111,9 +118,13 @@ def main(argv=None):
     p.add_argument("--rpm", type=float, required=True, help="the speed to compare")
     p.add_argument("--alpha", type=float, default=0.05, help="family-wise false-alarm rate (default: %(default)s)")
     p.add_argument("--out", help="also write the comparison as Markdown here")
-    p.add_argument("--timesteps", action="store_true",
-                   help="A and B are one state at two timesteps: a difference is the timestep's effect, not a "
-                        "failure of the error bars")
+    kind = p.add_mutually_exclusive_group()
+    kind.add_argument("--timesteps", action="store_true",
+                      help="A and B are one state at two timesteps: a difference is the timestep's effect, not a "
+                           "failure of the error bars")
+    kind.add_argument("--conventions", action="store_true",
+                      help="A and B are one speed under two sets of conventions (material table, mixing rules): "
+                           "a difference is the conventions' effect")
     args = p.parse_args(argv)
     a, b = row_at(args.a, args.rpm), row_at(args.b, args.rpm)
     rows = compare(a, b, harness.drum_metric_table(), args.alpha, power=0.8)
@@ -129,7 +140,7 @@ def main(argv=None):
             f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics). \"caught at 80 %\": the true "
             f"difference this check would catch with 80 % probability at these degrees of freedom (a smaller "
             f"one may pass unseen).\n\n{table}\n"
-            f"{verdict(agree, args.timesteps)}\n")
+            f"{verdict(agree, 'timesteps' if args.timesteps else 'conventions' if args.conventions else 'histories')}\n")
     print(text)
     if args.out:
         command = "tools/drum/histories.py " + " ".join(argv if argv is not None else sys.argv[1:])
