@@ -105,6 +105,10 @@ slip_all() {
     replica=(--study slip_yade_replica "YADE 1.12 conventions, second history (from 21 rpm's steady end state)"
              --start "$yade_start")
   fi
+  if [[ -e docs/drum/slip_thesis_replica/22rpm/run.json ]]; then
+    replica+=(--study slip_thesis_replica "thesis table, second history (from 21 rpm arrived at from 28 rpm)"
+              --start history_21rpm_from28:21)
+  fi
   "$py" tools/drum/slip.py \
     --study slip_thesis "thesis table (bead-drum mu 0.95)" --start study_thesis:21 \
     --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" --start "$yade_start" \
@@ -117,6 +121,13 @@ steady --name study_yade --speeds 21 --start-state docs/drum/study_thesis/21rpm/
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
   steady --name slip_yade_replica --speeds "$yade_slip_speeds" --start-state docs/drum/study_yade/21rpm/state.restart.gz \
     "${yade[@]}" --segment 1.5 --cap 1.5
+fi
+if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
+# the two YADE histories let go about a rpm apart (26-27 and 28 rpm): so the thesis' table's ramp
+# again too, from its other 21 rpm history (history_21rpm_from28's steady end state), to 35 rpm
+if ready docs/drum/history_21rpm_from28/21rpm/state.restart.gz; then
+  steady --name slip_thesis_replica --speeds "$slip_speeds" \
+    --start-state docs/drum/history_21rpm_from28/21rpm/state.restart.gz "${thesis[@]}" --segment 1.5 --cap 1.5
 fi
 if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 steady --name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60
