@@ -302,6 +302,51 @@ class Slip(unittest.TestCase):
         # the level follows alpha
         self.assertIn("(99% interval", "\n".join(slip.answer_section([("A", study(-2e-3)), ("B", study(0.0))], 0.01)))
 
+    def test_histories_of_one_set_answered_together(self):
+        # two sets of settings with two histories each (27 and 28 rpm, batch errors 0.1 mm, 3
+        # batches: a contrast counts beyond 0.46 mm): set Y drops in both histories, by 1 and 6 mm,
+        # set T rises in both; Y's two steps differ beyond their error bars, T's do not
+        def study(step):
+            return [(27.0, {"Hc_m": (0.0, 1e-4)}, 1.5, 3), (28.0, {"Hc_m": (step, 1e-4)}, 1.5, 3)]
+
+        with tempfile.TemporaryDirectory() as tmp:
+            docs = Path(tmp)
+            for name, variables in (("t1", '{"dt": "2e-5", "exact": "on"}'),
+                                    ("t2", '{"exact": "on", "dt": "2e-5"}'),
+                                    ("y1", '{"dt": "1e-5", "exact": "off", "conventions": "yade"}')):
+                (docs / name / "28rpm").mkdir(parents=True)
+                (docs / name / "28rpm" / "run.json").write_text(
+                    f'{{"settings": {{"period": "0.024", "variables": {variables}}}}}')
+            t1, t2, y1 = (slip.study_settings(docs, n) for n in ("t1", "t2", "y1"))
+            self.assertEqual(t1, t2)  # the order in run.json does not matter
+            self.assertNotEqual(t1, y1)
+            self.assertIsNone(slip.study_settings(docs, "absent"))
+        names = slip.set_names([t1, y1])
+        self.assertEqual(names[t1], "conventions default, dt 2e-5, exact on")
+        self.assertEqual(names[y1], "conventions yade, dt 1e-5, exact off")
+        studies = [("T1", study(0.6e-3)), ("Y1", study(-1e-3)), ("Y2", study(-6e-3)), ("T2", study(0.5e-3))]
+        text = "\n".join(slip.answer_section(studies, 0.05, sets=[t1, y1, y1, t1]))
+        self.assertIn("**By set of settings: Hc drops between 27 and 28 rpm with conventions default, dt 2e-5, "
+                      "exact on in 0 of 2 histories; with conventions yade, dt 1e-5, exact off in 2 of 2 histories.** "
+                      "Steps of different sets differ in 4 of 4 pairs", text)
+        # across sets: the pairwise answer, four times; within a set: compared as histories
+        self.assertEqual(text.count("**Hc drops between 27 and 28 rpm with Y"), 4)
+        self.assertIn("T2 minus T1: -0.10 ± 0.46 mm (95%): within the steps' combined error bars", text)
+        self.assertIn("Y2 minus Y1: -5.00 ± 0.46 mm (95%): BEYOND the steps' combined error bars", text)
+        self.assertNotIn("with neither", text)
+        self.assertNotIn("with both", text)
+        # a set whose histories disagree shows as such, and a contrast that does not tell the sets
+        # apart is counted as not differing
+        text = "\n".join(slip.answer_section([("T1", study(-0.2e-3)), ("Y1", study(-1e-3)), ("T2", study(-1e-3))],
+                                             0.05, sets=[t1, y1, t1]))
+        self.assertIn("exact on in 1 of 2 histories; with conventions yade, dt 1e-5, exact off in 1 of 1 history.** "
+                      "Steps of different sets differ in 1 of 2 pairs", text)
+        # without sets every study is its own: no headline, no histories paragraph
+        text = "\n".join(slip.answer_section(studies, 0.05))
+        self.assertNotIn("By set of settings", text)
+        self.assertNotIn("Two histories of one set", text)
+        self.assertEqual(text.count("**Hc drops"), 6)
+
     def test_where_the_bed_lets_go(self):
         # a ramp of 3 speeds as steady.py writes them: 10 samples 0.05 s apart, each speed's first
         # a repeat of the speed before's last state (same time; bed_turn divided by the new

@@ -20,6 +20,7 @@ falling below 1 and the drum contacts' rolling (`wall_roll`) and slip (`wall_sli
 """
 
 import argparse
+import json
 import math
 import shlex
 import statistics
@@ -294,13 +295,58 @@ def released_line(studies, ramps):
             + ". The thesis saw its drop between 27 and 28 rpm.", ""]
 
 
-def answer_section(studies, alpha, ramps=None):
+def study_settings(docs, name):
+    """The settings a study ran with (steady.py's run.json: its input variables and period), read
+    from its first speed: studies with the same settings are histories of one set."""
+    for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
+        path = folder / "run.json"
+        if path.exists():
+            settings = json.loads(path.read_text())["settings"]
+            return tuple(sorted(settings["variables"].items())) + (("period", settings["period"]),)
+    return None
+
+
+def set_names(sets):
+    """A name per set of settings: the settings in which the sets differ ('default' where a set
+    leaves one unset)."""
+    keys = [dict(k or ()) for k in dict.fromkeys(sets)]
+    differing = sorted({v for k in keys for v in k if len({k2.get(v) for k2 in keys}) > 1})
+    return {k: ", ".join(f"{v} {dict(k or ()).get(v, 'default')}" for v in differing) or "one set"
+            for k in dict.fromkeys(sets)}
+
+
+def sets_headline(verdicts, sets, pairs, level):
+    """The answer per set of settings, over its histories: in how many of them Hc drops at the 27
+    -> 28 rpm step, and whether every step of one set differs from every step of another."""
+    names = set_names(sets)
+    drops = {k: [v == "drops" for v, s in zip(verdicts, sets) if s == k] for k in names}
+    parts = [f"with {names[k]} in {sum(d)} of {len(d)} histor{'y' if len(d) == 1 else 'ies'}" for k, d in drops.items()]
+    lines = ["**By set of settings: Hc drops between 27 and 28 rpm " + "; ".join(parts) + ".**"]
+    across = [(i, j, d, c) for i, j, d, c in pairs if sets[i] != sets[j]]
+    if across and all(math.isfinite(c) for *_, c in across):
+        apart = sum(abs(d) > c for *_, d, c in across)
+        lines[0] += (f" Steps of different sets differ in {apart} of {len(across)} pairs "
+                     f"(each a Welch contrast at {level}, below).")
+    return lines + [""]
+
+
+def answer_section(studies, alpha, ramps=None, sets=None):
     """The question for two (or more) sets of conventions: does Hc drop between 27 and 28
     rpm with one and not the other? Each study's step by its own test; "one and not the other"
     only where the two steps also differ (their contrast): else the runs do not tell the
     conventions apart at this step, whatever the single tests say. With `ramps` (one per study,
-    as ramp_series gives them), also where along the ramp each bed lets go."""
-    found = [(label, got) for label, speeds in studies if (got := step_change(speeds, "Hc_m"))]
+    as ramp_series gives them), also where along the ramp each bed lets go. With `sets` (a key per
+    study, as study_settings gives it), studies with the same key are histories of one set of
+    settings: the answer is then given per set, and two histories of one set are compared as
+    such (a step's error bar is the scatter within its two windows; it does not cover where along
+    a ramp a release falls, so two histories' steps near a release may differ beyond it)."""
+    if sets is None:
+        sets = list(range(len(studies)))
+    found, found_sets = [], []
+    for (label, speeds), key in zip(studies, sets):
+        if got := step_change(speeds, "Hc_m"):
+            found.append((label, got))
+            found_sets.append(key)
     if len(found) < 2:
         return []
     level = f"{1.0 - alpha:.0%}"
@@ -316,26 +362,40 @@ def answer_section(studies, alpha, ramps=None):
                          f"the change); a drop of {catchable(parts, alpha) * 1e3:.2f} mm would be caught with 80 % "
                          "probability.")
     lines.append("")
-    for i in range(len(found)):
-        for j in range(i + 1, len(found)):
-            (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
-            difference, critical = contrast(a, b, alpha)
-            if "?" in (va, vb) or not math.isfinite(critical):
-                lines += [f"{la} against {lb}: no verdict (a speed without error bars).", ""]
-                continue
-            differ = abs(difference) > critical
-            if (va == "drops") != (vb == "drops"):
-                dropper, other = (la, lb) if va == "drops" else (lb, la)
-                summary = (f"Hc drops between 27 and 28 rpm with {dropper} and not with {other}, and the two steps "
-                           "differ" if differ else
-                           f"Hc drops between 27 and 28 rpm with {dropper} alone, but the two steps do not differ: "
-                           "these runs do not tell the two apart at this step")
-            elif va == "drops":
-                summary = "Hc drops between 27 and 28 rpm with both" + (", by different amounts" if differ else "")
-            else:
-                summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
-            lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
-                      "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom).", ""]
+    pairs = [(i, j) + contrast(found[i][1], found[j][1], alpha)
+             for i in range(len(found)) for j in range(i + 1, len(found))]
+    grouped = len(set(found_sets)) < len(found_sets)
+    if grouped and "?" not in verdicts:
+        lines += sets_headline(verdicts, found_sets, pairs, level)
+    same = []
+    for i, j, difference, critical in pairs:
+        (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
+        if "?" in (va, vb) or not math.isfinite(critical):
+            lines += [f"{la} against {lb}: no verdict (a speed without error bars).", ""]
+            continue
+        if found_sets[i] == found_sets[j]:
+            within = abs(difference) <= critical
+            same.append(f"{lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm ({level}): "
+                        + ("within" if within else "BEYOND") + " the steps' combined error bars")
+            continue
+        differ = abs(difference) > critical
+        if (va == "drops") != (vb == "drops"):
+            dropper, other = (la, lb) if va == "drops" else (lb, la)
+            summary = (f"Hc drops between 27 and 28 rpm with {dropper} and not with {other}, and the two steps "
+                       "differ" if differ else
+                       f"Hc drops between 27 and 28 rpm with {dropper} alone, but the two steps do not differ: "
+                       "these runs do not tell the two apart at this step")
+        elif va == "drops":
+            summary = "Hc drops between 27 and 28 rpm with both" + (", by different amounts" if differ else "")
+        else:
+            summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
+        lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
+                  "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom).", ""]
+    if same:
+        lines += ["Two histories of one set of settings, their 27 → 28 rpm steps compared (the same contrast): "
+                  + "; ".join(same) + ". A step's error bar is the scatter within its two windows; it does not "
+                  "cover where along a ramp a release falls, so near a release two histories' steps may differ "
+                  "beyond it: there the place of the release, below, is what they can agree on.", ""]
     return lines + released_line(studies, ramps or [])
 
 
@@ -376,7 +436,7 @@ def first_drop(step_rows):
     return None
 
 
-def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=()):
+def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=(), sets=None):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
@@ -401,7 +461,7 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None, wi
                   + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
                   "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
                   ""]
-    lines += answer_section(studies, alpha, ramps) + list(windows)
+    lines += answer_section(studies, alpha, ramps, sets) + list(windows)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
@@ -518,7 +578,10 @@ def main(argv=None):
         f" --null {a.null}" if a.null != "study_thesis" else "")
     ramps = [ramp_series(docs, name) for name, _ in a.study]
     windows = window_section(docs, [n for n, _ in a.study], [l for _, l in a.study], a.batches, a.alpha)
-    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps, windows))
+    # a study whose settings are unknown (no run.json) is a set of its own
+    sets = [study_settings(docs, name) or (("study", name),) for name, _ in a.study]
+    out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps, windows,
+                                               sets))
     rows = []
     for label, speeds in studies:
         for rpm, avg, seconds, batches in speeds:
