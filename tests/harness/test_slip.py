@@ -81,6 +81,8 @@ class Slip(unittest.TestCase):
             rate, low, high = found.interval()
             self.assertLess(low, reference)
             self.assertGreater(high, reference)
+            # white noise: consecutive batch means uncorrelated (about 0 +- 0.02 over 5980 batches)
+            self.assertLess(abs(found.lag1[0][1]), 0.1, found.lag1)
             # noise correlated over many samples (AR(1), 0.95 per 0.05 s: about 1 s) makes the 0.25 s
             # batch means of one window alike, their SE far too small: the check must see that
             state = [0.0] * 6
@@ -93,6 +95,8 @@ class Slip(unittest.TestCase):
             found = slip.null_rate(docs, "correlated", 1.5, 0.5, 3, 0.05)
             rate, low, high = found.interval()
             self.assertGreater(low, 0.1, (rate, low, high))
+            # AR(1) at 0.95 per sample: batch means of 5 samples correlate at about 0.8
+            self.assertGreater(found.lag1[0][1], 0.6, found.lag1)
 
     def test_the_interval_counts_correlated_metrics_as_fewer(self):
         # six metrics that always agree are one comparison per pair: the interval as wide as the
@@ -118,7 +122,11 @@ class Slip(unittest.TestCase):
             called, compared, pairs = slip.null_rate(docs, "study_thesis", 1.45, 0.5, 3, 0.05).counts()  # (runs of 30 samples)
             text = out.with_suffix(".md").read_text()
             self.assertIn(f"every speed: {called} of {compared} (", text)
-            self.assertIn("calls changes no more often than it states", text)
+            self.assertIn("calls changes at a rate not shown to exceed the stated one", text)
+            # Hc alone: one comparison per pair of pieces
+            hc_called, hc_compared, _ = slip.null_rate(docs, "study_thesis", 1.45, 0.5, 3, 0.05).hc.counts()
+            self.assertEqual(hc_compared, pairs)
+            self.assertIn(f"Hc alone, every speed: {hc_called} of {hc_compared} (", text)
             self.assertEqual(slip.main(["--study", "one", "one", "--null", "-", "--docs", d, "--out", str(out)]), 0)
             self.assertNotIn("Where nothing changes", out.with_suffix(".md").read_text())
 
@@ -328,10 +336,26 @@ class Slip(unittest.TestCase):
         text = "\n".join(slip.answer_section(studies, 0.05, sets=[t1, y1, y1, t1]))
         self.assertIn("**By set of settings: Hc drops between 27 and 28 rpm with conventions default, dt 2e-5, "
                       "exact on in 0 of 2 histories; with conventions yade, dt 1e-5, exact off in 2 of 2 histories.** "
-                      "Steps of different sets differ in 4 of 4 pairs", text)
+                      "Steps of different sets differ in 4 of 4 Welch contrasts at 95% (below), which reuse 4 runs",
+                      text)
+        # without ramps, no release line in the headline
+        self.assertNotIn("where the bed lets go", text)
+        # with the releases on the ramp clock: each set's onsets, their spread, the gap between sets;
+        # with the verdicts over windows: how many windows call each history's drop
+        headline = "\n".join(slip.sets_headline(["rises", "drops", "drops", "rises"], [t1, y1, y1, t1], [], "95%",
+                                                 [31.53, 26.73, 28.03, 31.63],
+                                             [["rises"] * 5, ["no change", "drops", "drops", "no change", "no change"],
+                                              ["drops"] * 4 + ["no change"], ["rises"] * 5]))
+        self.assertIn("with conventions default, dt 2e-5, exact on at 31.5 and 31.6 rpm (0.1 apart); with conventions "
+                      "yade, dt 1e-5, exact off at 26.7 and 28.0 rpm (1.3 apart). Between sets: 3.5-4.9 rpm.", headline)
+        self.assertIn("exact on in 0 of 2 histories (a drop called in 0, 0 of 5 windows, by history); with conventions "
+                      "yade, dt 1e-5, exact off in 2 of 2 histories (a drop called in 2, 4 of 5 windows, by history)",
+                      headline)
+        # a history that never lets go: no release line (the spread would be undefined)
+        self.assertNotIn("lets go", "\n".join(slip.sets_headline(["rises", "drops"], [t1, y1], [], "95%", [None, 27.0])))
         # across sets: the pairwise answer, four times; within a set: compared as histories
         self.assertEqual(text.count("**Hc drops between 27 and 28 rpm with Y"), 4)
-        self.assertIn("T2 minus T1: -0.10 ± 0.46 mm (95%): within the steps' combined error bars", text)
+        self.assertIn("T2 minus T1: -0.10 ± 0.46 mm (95%): within the steps' combined error bars (a difference of ", text)
         self.assertIn("Y2 minus Y1: -5.00 ± 0.46 mm (95%): BEYOND the steps' combined error bars", text)
         self.assertNotIn("with neither", text)
         self.assertNotIn("with both", text)
@@ -340,7 +364,7 @@ class Slip(unittest.TestCase):
         text = "\n".join(slip.answer_section([("T1", study(-0.2e-3)), ("Y1", study(-1e-3)), ("T2", study(-1e-3))],
                                              0.05, sets=[t1, y1, t1]))
         self.assertIn("exact on in 1 of 2 histories; with conventions yade, dt 1e-5, exact off in 1 of 1 history.** "
-                      "Steps of different sets differ in 1 of 2 pairs", text)
+                      "Steps of different sets differ in 1 of 2 Welch contrasts", text)
         # without sets every study is its own: no headline, no histories paragraph
         text = "\n".join(slip.answer_section(studies, 0.05))
         self.assertNotIn("By set of settings", text)
@@ -416,6 +440,38 @@ class Slip(unittest.TestCase):
             self.assertIn("with L from 0.20 s into 27 rpm", text)
             self.assertNotIn("Along the ramp", "\n".join(slip.answer_section([("L", two), ("B", two)], 0.05)))
             self.assertEqual(slip.released_line([("A", speeds)], [[]]), [])
+
+    def test_the_ramp_clock(self):
+        # speeds of 1.5 s (10 samples 0.15 s apart after the first speed's start): 0.6 s into 27
+        # rpm is 27.4; a first speed counts from its first sample
+        ramp = [(0.15 * k, 26.0 + (k - 1) // 10 if k else 26.0, -0.09, 1.0) for k in range(31)]
+        self.assertAlmostEqual(slip.ramp_clock(ramp, (2.1, 27.0, 0.6)), 27.4)
+        self.assertAlmostEqual(slip.ramp_clock(ramp, (0.45, 26.0, 0.45)), 26.3)
+
+    def test_the_difference_two_steps_are_seen_to_differ_by(self):
+        # the contrast (four batch-mean errors, 3 batches each) drawn from normal batch means in an
+        # independent simulation: a true difference of contrast_catchable's size is called with
+        # probability 0.8 (within 0.015, 3.7 binomial sd at 4000 draws); half of it far less often
+        se = [1e-4, 2e-4, 1.5e-4, 1e-4]
+        x = (0.0, math.hypot(se[0], se[1]), (se[0], 3, se[1], 3))
+        y = (0.0, math.hypot(se[2], se[3]), (se[2], 3, se[3], 3))
+        size = slip.contrast_catchable(x, y, 0.05)
+        rng = np.random.default_rng(3)
+        for true, expected in ((size, 0.8), (size / 2, None)):
+            called = 0
+            for _ in range(4000):
+                batches = [rng.normal(0.0, s * math.sqrt(3), 3) for s in se]
+                batches[3] = batches[3] + true
+                means = [b.mean() for b in batches]
+                errs = [b.std(ddof=1) / math.sqrt(3) for b in batches]
+                bx = (means[1] - means[0], math.hypot(errs[0], errs[1]), (errs[0], 3, errs[1], 3))
+                by = (means[3] - means[2], math.hypot(errs[2], errs[3]), (errs[2], 3, errs[3], 3))
+                difference, critical = slip.contrast(bx, by, 0.05)
+                called += abs(difference) > critical
+            if expected:
+                self.assertAlmostEqual(called / 4000, expected, delta=0.015)
+            else:
+                self.assertLess(called / 4000, 0.4)
 
     def test_a_missing_start_speed_is_named(self):
         with tempfile.TemporaryDirectory() as d:

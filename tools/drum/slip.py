@@ -32,7 +32,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
 from histories import detectable, satterthwaite, welch_dof  # noqa: E402
-from scipy import stats  # noqa: E402
+import numpy as np  # noqa: E402
+from scipy import optimize, stats  # noqa: E402
 
 # (label, column, scale, unit, digits) of the metrics compared
 METRICS = [("Hc", "Hc_m", 1e3, "mm", 2), ("Hh", "Hh_m", 1e3, "mm", 1), ("angle", "angle_deg", 1.0, "deg", 2),
@@ -126,8 +127,12 @@ class NullRate:
     """What null_rate found: per speed, the changes called and the comparisons made at each pair of
     consecutive pieces."""
 
-    def __init__(self, pairs):
+    def __init__(self, pairs, hc=None, lag1=()):
         self.pairs = pairs  # [(rpm, called, compared)], one per pair of consecutive pieces
+        self.hc = hc  # the same for Hc alone (a NullRate), the metric the slip test's answer reads
+        # [(rpm, r)]: the lag-one correlation of Hc's consecutive batch means (a piece's batch
+        # length) over each speed's steady series: batch means taken as independent need r near 0
+        self.lag1 = list(lag1)
 
     def counts(self, lo=-math.inf, hi=math.inf):
         chosen = [(c, n) for rpm, c, n in self.pairs if lo <= rpm <= hi]
@@ -164,7 +169,7 @@ def null_rate(docs, name, block_s, window, batches, alpha):
     against each other as steps are: the false-alarm rate on the drum's own fluctuations, where the
     stated one (alpha per comparison) assumes independent batch means. (A slip speed's window also
     holds what is left of its step's transient; steady pieces have none.)"""
-    pairs = []
+    pairs, hc, lag1 = [], [], []
     for folder in sorted((docs / name).glob("*rpm"), key=lambda p: float(p.name[:-3])):
         series_path, average_path = folder / "series_metrics.csv", folder / "series_average.csv"
         if not (series_path.exists() and average_path.exists()):
@@ -182,7 +187,15 @@ def null_rate(docs, name, block_s, window, batches, alpha):
         for k in range(0, len(rows), len(METRICS)):
             verdicts = [row[3] for row in rows[k:k + len(METRICS)] if row[3] != "?"]
             pairs.append((float(folder.name[:-3]), sum(v != "no change" for v in verdicts), len(verdicts)))
-    return NullRate(pairs)
+            hc += [(float(folder.name[:-3]), int(row[3] != "no change"), 1) for row in rows[k:k + len(METRICS)]
+                   if row[2] == "Hc" and row[3] != "?"]
+        size = max(1, round(window * n)) // batches
+        means = np.array([statistics.fmean(float(r["Hc_m"]) for r in series[k:k + size])
+                          for k in range(0, len(series) - size + 1, size)]) if size else np.array([])
+        if len(means) > 2 and np.ptp(means) > 0:
+            means -= means.mean()
+            lag1.append((float(folder.name[:-3]), float(np.sum(means[1:] * means[:-1]) / np.sum(means ** 2))))
+    return NullRate(pairs, NullRate(hc), lag1)
 
 
 def start_row(docs, spec):
@@ -257,9 +270,37 @@ def contrast(x, y, alpha):
     return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
 
 
+def contrast_catchable(x, y, alpha, power=0.8, replicas=20000):
+    """The true difference between two studies' steps that `contrast` calls with probability
+    `power`: the contrast simulated (fixed seed), each of its four batch-mean errors estimated from
+    n - 1 degrees of freedom, Satterthwaite's degrees of freedom and the critical t from them."""
+    (_, sx, (s1, n1, s2, n2)), (_, sy, (s3, n3, s4, n4)) = x, y
+    parts = [(s1, n1), (s2, n2), (s3, n3), (s4, n4)]
+    scale = math.hypot(sx, sy)
+    if not (scale > 0 and all(n >= 2 for _, n in parts)):
+        return float("nan")
+    rng = np.random.default_rng(20261205)
+    est = [se * np.sqrt(rng.chisquare(n - 1, replicas) / (n - 1)) for se, n in parts]
+    dof = sum(e ** 2 for e in est) ** 2 / sum(e ** 4 / (n - 1) for e, (_, n) in zip(est, parts))
+    limit = stats.t.ppf(1.0 - alpha / 2.0, dof) * np.sqrt(sum(e ** 2 for e in est))
+    noise = rng.normal(0.0, scale, replicas)
+    return optimize.brentq(lambda d: np.mean(np.abs(d + noise) > limit) - power, 0.0, 20.0 * scale)
+
+
 # how "lets go" is read off `bed_turn`, said once for both texts that use it
 RELEASE_RULE = (f"`bed_turn`, a running median over 5 samples, below {LETS_GO:g} from then on; "
                 f"half-way: below {HALF_WAY:g}")
+
+
+def ramp_clock(ramp, at):
+    """A point along a step ramp (`lets_go`'s (time, rpm, time into that speed)) as one number:
+    the speed plus the fraction of its run gone, so that 26.7 is 70 % into 26 rpm. The run is
+    the span from the speed before's last sample to this speed's last."""
+    _, rpm, into = at
+    before = [s[0] for s in ramp if s[1] < rpm]
+    own = [s[0] for s in ramp if s[1] == rpm]
+    run = max(own) - (max(before) if before else min(own))
+    return rpm + into / run if run > 0 else float(rpm)
 
 
 def release(ramp):
@@ -315,22 +356,48 @@ def set_names(sets):
             for k in dict.fromkeys(sets)}
 
 
-def sets_headline(verdicts, sets, pairs, level):
-    """The answer per set of settings, over its histories: in how many of them Hc drops at the 27
-    -> 28 rpm step, and whether every step of one set differs from every step of another."""
+def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None):
+    """The answer per set of settings, over its histories. First where each history's bed lets go
+    along the ramp (`onsets`: ramp_clock of each release onset, None where a bed never lets go):
+    its spread within a set against the gap between sets, described, not tested (a handful of
+    histories). Then in how many histories Hc drops at the 27 -> 28 rpm step, with how many of
+    the windows of window_section call that drop (`robust`: per history the verdicts over
+    WINDOWS). Last the contrasts between sets, with what their error bars leave out."""
     names = set_names(sets)
-    drops = {k: [v == "drops" for v, s in zip(verdicts, sets) if s == k] for k in names}
-    parts = [f"with {names[k]} in {sum(d)} of {len(d)} histor{'y' if len(d) == 1 else 'ies'}" for k, d in drops.items()]
-    lines = ["**By set of settings: Hc drops between 27 and 28 rpm " + "; ".join(parts) + ".**"]
+    lines = []
+    if onsets and all(o is not None for o in onsets):
+        by_set = {k: sorted(o for o, s in zip(onsets, sets) if s == k) for k in names}
+        parts = [f"with {names[k]} at " + " and ".join(f"{o:.1f}" for o in v) + " rpm"
+                 + (f" ({v[-1] - v[0]:.1f} apart)" if len(v) > 1 else "") for k, v in by_set.items()]
+        gaps = [abs(a - b) for i, (ka, a) in enumerate(zip(sets, onsets)) for kb, b in zip(sets[i + 1:], onsets[i + 1:])
+                if ka != kb]
+        text = ("**By set of settings, where the bed lets go of the drum along the ramp** (the onset on the ramp "
+                "clock, a speed plus the fraction of its run gone; described, not tested, over "
+                f"{len(onsets)} histories): " + "; ".join(parts) + ".")
+        if gaps:
+            text += f" Between sets: {min(gaps):.1f}-{max(gaps):.1f} rpm."
+        lines += [text, ""]
+    drops = {k: [i for i, s in enumerate(sets) if s == k] for k in names}
+    parts = []
+    for k, members in drops.items():
+        called = sum(verdicts[i] == "drops" for i in members)
+        part = f"with {names[k]} in {called} of {len(members)} histor{'y' if len(members) == 1 else 'ies'}"
+        if robust and all(robust[i] for i in members):
+            part += (" (a drop called in " + ", ".join(f"{sum(v == 'drops' for v in robust[i])}" for i in members)
+                     + f" of {len(robust[members[0]])} windows, by history)")
+        parts.append(part)
+    lines += ["**By set of settings: Hc drops between 27 and 28 rpm " + "; ".join(parts) + ".**"]
     across = [(i, j, d, c) for i, j, d, c in pairs if sets[i] != sets[j]]
     if across and all(math.isfinite(c) for *_, c in across):
         apart = sum(abs(d) > c for *_, d, c in across)
-        lines[0] += (f" Steps of different sets differ in {apart} of {len(across)} pairs "
-                     f"(each a Welch contrast at {level}, below).")
+        lines[-1] += (f" Steps of different sets differ in {apart} of {len(across)} Welch contrasts at {level} "
+                      f"(below), which reuse {len(verdicts)} runs and whose error bars hold only the scatter "
+                      "within each run's windows, not the variation between histories: not independent "
+                      "evidence.")
     return lines + [""]
 
 
-def answer_section(studies, alpha, ramps=None, sets=None):
+def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
     """The question for two (or more) sets of conventions: does Hc drop between 27 and 28
     rpm with one and not the other? Each study's step by its own test; "one and not the other"
     only where the two steps also differ (their contrast): else the runs do not tell the
@@ -342,11 +409,15 @@ def answer_section(studies, alpha, ramps=None, sets=None):
     a ramp a release falls, so two histories' steps near a release may differ beyond it)."""
     if sets is None:
         sets = list(range(len(studies)))
-    found, found_sets = [], []
-    for (label, speeds), key in zip(studies, sets):
+    found, found_sets, onsets, windows = [], [], [], []
+    for k, ((label, speeds), key) in enumerate(zip(studies, sets)):
         if got := step_change(speeds, "Hc_m"):
             found.append((label, got))
             found_sets.append(key)
+            ramp = ramps[k] if ramps else []
+            onset = lets_go(ramp) if ramp else None
+            onsets.append(ramp_clock(ramp, onset) if onset else None)
+            windows.append(robust[k] if robust else None)
     if len(found) < 2:
         return []
     level = f"{1.0 - alpha:.0%}"
@@ -366,7 +437,7 @@ def answer_section(studies, alpha, ramps=None, sets=None):
              for i in range(len(found)) for j in range(i + 1, len(found))]
     grouped = len(set(found_sets)) < len(found_sets)
     if grouped and "?" not in verdicts:
-        lines += sets_headline(verdicts, found_sets, pairs, level)
+        lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows)
     same = []
     for i, j, difference, critical in pairs:
         (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
@@ -376,7 +447,9 @@ def answer_section(studies, alpha, ramps=None, sets=None):
         if found_sets[i] == found_sets[j]:
             within = abs(difference) <= critical
             same.append(f"{lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm ({level}): "
-                        + ("within" if within else "BEYOND") + " the steps' combined error bars")
+                        + (f"within the steps' combined error bars (a difference of "
+                           f"{contrast_catchable(a, b, alpha) * 1e3:.2f} mm would be seen with 80 % probability)"
+                           if within else "BEYOND the steps' combined error bars"))
             continue
         differ = abs(difference) > critical
         if (va == "drops") != (vb == "drops"):
@@ -403,22 +476,30 @@ def answer_section(studies, alpha, ramps=None, sets=None):
 WINDOWS = (0.3, 0.4, 0.5, 0.7, 1.0)
 
 
+def step_by_window(docs, name, batches, alpha):
+    """The 27 -> 28 rpm step of Hc read with each of WINDOWS: [(verdict, difference, critical)],
+    or [] where the study lacks either speed."""
+    cells = []
+    for window in WINDOWS:
+        got = step_change(study_speeds(docs, name, window, batches), "Hc_m")
+        if not got:
+            return []
+        diff, _, parts = got
+        verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
+        cells.append((verdict, diff, critical))
+    return cells
+
+
 def window_section(docs, names, labels, batches, alpha):
     """The 27 -> 28 rpm step of Hc per study, read with each of WINDOWS: a step that is the tail
     of a transient (its first speed still drifting) changes verdict with the window; a step the
     speed change causes does not."""
     lines = []
     for name, label in zip(names, labels):
-        cells = []
-        for window in WINDOWS:
-            got = step_change(study_speeds(docs, name, window, batches), "Hc_m")
-            if not got:
-                break
-            diff, _, parts = got
-            verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
-            cells.append(f"{verdict} ({diff * 1e3:+.2f} ± {critical * 1e3:.2f})" if verdict != "?" else "?")
-        if len(cells) == len(WINDOWS):
-            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+        cells = step_by_window(docs, name, batches, alpha)
+        if cells:
+            lines.append(f"| {label} | " + " | ".join(f"{v} ({d * 1e3:+.2f} ± {c * 1e3:.2f})" if v != "?" else "?"
+                                                      for v, d, c in cells) + " |")
     if not lines:
         return []
     return (["## The 27 → 28 rpm step by window", "",
@@ -436,7 +517,7 @@ def first_drop(step_rows):
     return None
 
 
-def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=(), sets=None):
+def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=(), sets=None, robust=None):
     lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
              f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
@@ -452,16 +533,29 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None, wi
             if compared:
                 text.append(f"{what}: {called} of {compared} ({rate:.1%}, 95 % interval {low:.1%}-{high:.1%} over "
                             f"{pairs} pairs of pieces)")
+        if found.hc:
+            called, compared, _ = found.hc.counts()
+            rate, low, high = found.hc.interval()
+            if compared:
+                text.append(f"Hc alone, every speed: {called} of {compared} ({rate:.1%}, 95 % interval "
+                            f"{low:.1%}-{high:.1%})")
         rate, low, high = found.interval()  # (every speed's, for the verdict)
+        highs = [found.interval(lo, hi)[2] for lo, hi in ((-math.inf, math.inf), (21.0, 35.0))]
+        bound = " at every speed" + (f", {highs[1]:.1%} at 21-35 rpm" if math.isfinite(highs[1]) else "")
         reading = ("MORE often than it states: its steps overstate their significance" if low > alpha else
-                   f"no more often than it states, within the interval (up to {high:.0%})")
+                   f"at a rate not shown to exceed the stated one (the 95 % interval reaches {highs[0]:.1%}"
+                   f"{bound}: a rate up to that is not excluded)")
         lines += [f"Where nothing changes: the steady series of `{name}` (each speed from its steady start) cut "
                   f"into consecutive pieces of {block_s:g} s, each read as a speed is here, consecutive pieces "
                   f"compared as steps are; changes called, stated {alpha:.0%} per comparison: "
                   + "; ".join(text) + f". On the drum's own fluctuations this reading calls changes {reading}. "
-                  "(A slip speed's window also holds the rest of its step's transient, which steady pieces lack.)",
+                  "(Consecutive pairs share a piece, and a piece's batch means may be correlated in time"
+                  + (f" (lag-one correlation of Hc's consecutive batch means over each speed's steady series: "
+                     f"{min(r for _, r in found.lag1):+.2f} to {max(r for _, r in found.lag1):+.2f})" if found.lag1 else "")
+                  + ", so the intervals are approximate. A slip speed's window also holds the rest of its step's transient, "
+                  "which steady pieces lack.)",
                   ""]
-    lines += answer_section(studies, alpha, ramps, sets) + list(windows)
+    lines += answer_section(studies, alpha, ramps, sets, robust) + list(windows)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
@@ -580,8 +674,9 @@ def main(argv=None):
     windows = window_section(docs, [n for n, _ in a.study], [l for _, l in a.study], a.batches, a.alpha)
     # a study whose settings are unknown (no run.json) is a set of its own
     sets = [study_settings(docs, name) or (("study", name),) for name, _ in a.study]
+    robust = [[v for v, _, _ in step_by_window(docs, name, a.batches, a.alpha)] for name, _ in a.study]
     out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps, windows,
-                                               sets))
+                                               sets, robust))
     rows = []
     for label, speeds in studies:
         for rpm, avg, seconds, batches in speeds:
