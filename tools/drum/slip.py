@@ -356,26 +356,42 @@ def set_names(sets):
             for k in dict.fromkeys(sets)}
 
 
-def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None):
+def between_histories(values, sets):
+    """With exactly two sets of at least two histories each: (mean of the second set minus the
+    first's, Welch's p) on one value per history, the history as the unit; else None."""
+    keys = list(dict.fromkeys(sets))
+    groups = [[v for v, k in zip(values, sets) if k == key] for key in keys]
+    if len(groups) != 2 or min(len(g) for g in groups) < 2:
+        return None
+    return statistics.fmean(groups[1]) - statistics.fmean(groups[0]), float(
+        stats.ttest_ind(groups[1], groups[0], equal_var=False).pvalue)
+
+
+def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None, changes=None):
     """The answer per set of settings, over its histories. First where each history's bed lets go
     along the ramp (`onsets`: ramp_clock of each release onset, None where a bed never lets go):
-    its spread within a set against the gap between sets, described, not tested (a handful of
-    histories). Then in how many histories Hc drops at the 27 -> 28 rpm step, with how many of
-    the windows of window_section call that drop (`robust`: per history the verdicts over
-    WINDOWS). Last the contrasts between sets, with what their error bars leave out."""
+    its spread within a set against the gap between sets, described (a handful of histories; with
+    two sets of two or more, Welch's p with the history as the unit). Then in how many histories
+    Hc drops at the 27 -> 28 rpm step, with how many of the windows of window_section call that
+    drop (`robust`: per history the verdicts over WINDOWS). Last the contrasts between sets, with
+    what their error bars leave out, and the sets' steps (`changes`, one per history) compared
+    with the history as the unit. Histories are listed in the order given."""
     names = set_names(sets)
     lines = []
     if onsets and all(o is not None for o in onsets):
-        by_set = {k: sorted(o for o, s in zip(onsets, sets) if s == k) for k in names}
+        by_set = {k: [o for o, s in zip(onsets, sets) if s == k] for k in names}
         parts = [f"with {names[k]} at " + " and ".join(f"{o:.1f}" for o in v) + " rpm"
-                 + (f" ({v[-1] - v[0]:.1f} apart)" if len(v) > 1 else "") for k, v in by_set.items()]
+                 + (f" ({max(v) - min(v):.1f} apart)" if len(v) > 1 else "") for k, v in by_set.items()]
         gaps = [abs(a - b) for i, (ka, a) in enumerate(zip(sets, onsets)) for kb, b in zip(sets[i + 1:], onsets[i + 1:])
                 if ka != kb]
         text = ("**By set of settings, where the bed lets go of the drum along the ramp** (the onset on the ramp "
-                "clock, a speed plus the fraction of its run gone; described, not tested, over "
+                "clock, a speed plus the fraction of its run gone, by history; described over "
                 f"{len(onsets)} histories): " + "; ".join(parts) + ".")
         if gaps:
-            text += f" Between sets: {min(gaps):.1f}-{max(gaps):.1f} rpm."
+            text += f" Between sets: {min(gaps):.1f}-{max(gaps):.1f} rpm"
+            unit = between_histories(onsets, sets)
+            text += (f" (with the history as the unit, Welch's p = {unit[1]:.2f}: two histories a set give such "
+                     "a test little power)." if unit else ".")
         lines += [text, ""]
     drops = {k: [i for i, s in enumerate(sets) if s == k] for k in names}
     parts = []
@@ -391,9 +407,14 @@ def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None):
     if across and all(math.isfinite(c) for *_, c in across):
         apart = sum(abs(d) > c for *_, d, c in across)
         lines[-1] += (f" Steps of different sets differ in {apart} of {len(across)} Welch contrasts at {level} "
-                      f"(below), which reuse {len(verdicts)} runs and whose error bars hold only the scatter "
-                      "within each run's windows, not the variation between histories: not independent "
+                      f"(below), which reuse the {len(verdicts)} histories and whose error bars hold only the "
+                      "scatter within each run's windows, not the variation between histories: not independent "
                       "evidence.")
+    unit = between_histories(changes, sets) if changes else None
+    if unit:
+        names_in_order = [names[k] for k in dict.fromkeys(sets)]
+        lines[-1] += (f" With the history as the unit, the mean step with {names_in_order[1]} minus that with "
+                      f"{names_in_order[0]}: {unit[0] * 1e3:+.2f} mm, Welch's p = {unit[1]:.2f}.")
     return lines + [""]
 
 
@@ -437,7 +458,7 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
              for i in range(len(found)) for j in range(i + 1, len(found))]
     grouped = len(set(found_sets)) < len(found_sets)
     if grouped and "?" not in verdicts:
-        lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows)
+        lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows, [got[0] for _, got in found])
     same = []
     for i, j, difference, critical in pairs:
         (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
@@ -463,7 +484,8 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
         else:
             summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
         lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
-                  "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom).", ""]
+                  "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom"
+                  + ("; within-run scatter only, see the set's histories above" if grouped else "") + ").", ""]
     if same:
         lines += ["Two histories of one set of settings, their 27 → 28 rpm steps compared (the same contrast): "
                   + "; ".join(same) + ". A step's error bar is the scatter within its two windows; it does not "
@@ -525,7 +547,7 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None, wi
              "steps without a change read as one). The first row of a study may be the steady speed it "
              "started from (its averages over whole revolutions).", ""]
     if null:
-        name, block_s, found = null
+        name, block_s, found, scan = null
         text = []
         for what, lo, hi in (("every speed", -math.inf, math.inf), ("21-35 rpm, the slip's range", 21.0, 35.0)):
             called, compared, pairs = found.counts(lo, hi)
@@ -555,6 +577,25 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None, wi
                   + ", so the intervals are approximate. A slip speed's window also holds the rest of its step's transient, "
                   "which steady pieces lack.)",
                   ""]
+        above = [piece for piece, got in scan if got.interval()[1] > alpha]
+        if above:
+            lines[-2] += (f" With pieces of {', '.join(f'{p:g}' for p in above)} s, whose batches are shorter and "
+                          "more alike, the rate EXCEEDS the stated one (below): the steps' error bars hold only "
+                          "where a run's batches are long enough to be nearly independent.")
+        if scan:
+            lines += ["The same with other piece lengths (a piece's batches shorten with it, and shorter batches "
+                      "are more alike):", "",
+                      "| piece [s] | changes called | rate (95 % interval) | Hc alone | Hc's batch means, lag-one "
+                      "correlation |", "|---|---|---|---|---|"]
+            for piece, got in scan:
+                called, compared, _ = got.counts()
+                rate, low, high = got.interval()
+                hc_called, hc_compared, _ = got.hc.counts()
+                lag = [r for _, r in got.lag1]
+                lines.append(f"| {piece:g} | {called} of {compared} | {rate:.1%} ({low:.1%}-{high:.1%}) | "
+                             f"{hc_called} of {hc_compared} ({hc_called / max(hc_compared, 1):.1%}) | "
+                             + (f"{min(lag):+.2f} to {max(lag):+.2f}" if lag else "-") + " |")
+            lines.append("")
     lines += answer_section(studies, alpha, ramps, sets, robust) + list(windows)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
@@ -665,7 +706,9 @@ def main(argv=None):
     runs = [seconds for _, speeds in studies for _, _, seconds, _ in speeds if math.isfinite(seconds)]
     if a.null != "-" and runs and (docs / a.null).is_dir():
         block = statistics.median(runs)
-        null = (a.null, block, null_rate(docs, a.null, block, a.window, a.batches, a.alpha))
+        scan = [(piece, null_rate(docs, a.null, piece, a.window, a.batches, a.alpha))
+                 for piece in (2 / 3 * block, 5 / 6 * block, block, 7 / 6 * block, 4 / 3 * block)]
+        null = (a.null, block, null_rate(docs, a.null, block, a.window, a.batches, a.alpha), scan)
     out = Path(a.out)
     command = "tools/drum/slip.py " + " ".join(f"--study {n} {shlex.quote(l)}" for n, l in a.study) + "".join(
         f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
