@@ -110,20 +110,33 @@ class Report(unittest.TestCase):
 
     def test_the_replay_stops_where_the_study_stopped(self):
         # replayed with a committed speed's own rule, where its driver checked: the speed's own
-        # simulated time (its driver stopped at the first check that said done)
-        docs = Path(__file__).resolve().parents[2] / "docs" / "drum" / "study_thesis"
-        for rpm in (56, 63):
-            series = report.harness.read_csv(docs / f"{rpm}rpm" / "series_metrics.csv")
-            run = report.harness.read_json(docs / f"{rpm}rpm" / "run.json")
-            t, verdict = report.time_to_target(series, run, rpm, 2e-5, run["settings"]["min_batches"])
-            self.assertAlmostEqual(t, run["simulated_s"], places=6)
-            self.assertEqual(int(verdict["done"]), 1)
+        # simulated time (its driver stopped at the first check that said done), at every finished
+        # speed of the two studies: the first speed's start from the grid (settle added), speeds
+        # of up to 23 segments, and the rule with the standard errors' bound (study_bound)
+        drum = Path(__file__).resolve().parents[2] / "docs" / "drum"
+        checked = set()
+        for name in ("study_thesis", "study_bound"):
+            for folder in sorted((drum / name).glob("*rpm")):
+                run = report.harness.read_json(folder / "run.json") if (folder / "run.json").exists() else {}
+                if run.get("outcome") != "done":
+                    continue
+                rpm, settings = int(folder.name[:-3]), run["settings"]
+                series = report.harness.read_csv(folder / "series_metrics.csv")
+                t, verdict = report.time_to_target(series, run, rpm, float(settings["variables"]["dt"]),
+                                                   settings["min_batches"], settings.get("confidence", 0.0))
+                self.assertAlmostEqual(t, run["simulated_s"], places=6, msg=f"{name} {rpm} rpm")
+                self.assertEqual(int(verdict["done"]), 1)
+                checked.add((name, rpm, float(series[0]["time_s"]) == 0.0, settings.get("confidence", 0.0) > 0))
+        self.assertGreaterEqual(len({(n, r) for n, r, _, _ in checked if n == "study_thesis"}), 9)
+        self.assertTrue(any(grid for _, _, grid, _ in checked))  # a start from the grid
+        self.assertTrue(any(bound for _, _, _, bound in checked))  # the rule with the bound
 
     def test_a_median_with_lower_bounds(self):
         # a speed that never reached the target counts at its whole run's time, a lower bound: the
         # median stands where that speed lies above it either way, else it is only a lower bound
         self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [False] * 4 + [True]), "30")
-        self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [True] + [False] * 4), "≥ 30")
+        self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [True] + [False] * 4), "30–40")
+        self.assertEqual(report.censored_median([10, 20, 30, 40, 50], [True, True, True, False, False]), "≥ 30")
         self.assertEqual(report.censored_median([10, 20, 30, 40], [False] * 4), "25")
 
     def test_time_with_the_machine_to_itself(self):
@@ -144,6 +157,9 @@ class Report(unittest.TestCase):
             self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "wall": "surface"}, stem)))
             self.assertTrue(math.isnan(report.alone_rate(2e-5, {**study, "conventions": "yade"}, stem)))
             self.assertTrue(math.isnan(report.alone_rate(2e-5, study, Path(d) / "none")))
+            # the slowest round's factor: the median rate over the slowest (`fast` only)
+            self.assertAlmostEqual(report.slowest_round(stem), 8e6 / 7e6)
+            self.assertTrue(math.isnan(report.slowest_round(Path(d) / "none")))
         # the table's two columns and their medians: as run, half the CPU time; alone, as given. A
         # speed that never reached the target counts at its whole run's time, a lower bound: here it
         # lies below the median, so the median is only a lower bound too
@@ -151,14 +167,15 @@ class Report(unittest.TestCase):
         reached = [(7, (3, 0.0), 10.0, 2.0, verdict, 50.0), (14, (3, 0.0), 8.0, 1.0, verdict, 40.0),
                    (21, (3, 0.0), 6.0, 3.0, verdict, 20.0), (28, (3, 0.0), 6.0, 0.5, None, 10.0),
                    (7, (3, 0.95), 10.0, 2.0, verdict, 50.0)]
-        text = report.markdown("s", [row(7, 0.05, 0.001)], reached)
+        text = report.markdown("s", [row(7, 0.05, 0.001)], reached, 1.5)
         self.assertIn("| 7 | 3 | 10.00 | 2.0 | 60 | 50 | -100.000 ± 0.010 | 30.000 ± 0.010 |", text)
         self.assertIn("| 28 | 3 | > 6.00 | > 0.5 | > 15 | > 10 | not reached | – |", text)
         self.assertIn("| 7 | 3, 95 % bound | 10.00 |", text)
-        self.assertIn("- 3 batches: median over 4 speeds ≥ 45 minutes on 2 cores as run, ≥ 30 with the machine to "
-                      "itself (1 never reached the target", text)
+        # the median between the lower bound's time as given (10: 30 alone) and unbounded (40 and 50: 45)
+        self.assertIn("- 3 batches: median over 4 speeds 45–75 minutes on 2 cores as run, 30–45 with the machine to "
+                      "itself (45–68 at the benchmark's slowest round) (1 never reached the target", text)
         self.assertIn("- 3 batches, the standard errors' 95 % bound: median over 1 speeds 60 minutes on 2 cores as run, 50 with the "
-                      "machine to itself.", text)
+                      "machine to itself (75 at the benchmark's slowest round).", text)
 
     def test_no_table_no_report(self):
         with tempfile.TemporaryDirectory() as d:

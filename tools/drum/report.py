@@ -138,6 +138,16 @@ def alone_rate(dt, variables=None, benchmark=BENCHMARK):
     return harness.median(rates) if rates else float("nan")
 
 
+def slowest_round(benchmark=BENCHMARK):
+    """The benchmark's median `fast` rate over its slowest round's: how much longer the minutes
+    with the machine to itself get at the slowest rate it measured (the same machine's speed
+    varies from round to round); nan without the benchmark."""
+    csv_path = Path(f"{benchmark}.csv")
+    rates = [float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast"] \
+        if csv_path.exists() else []
+    return harness.median(rates) / min(rates) if rates else float("nan")
+
+
 # The stop rules replayed beside a study's own: (fewest batches, confidence of the SE bound; 0:
 # the SE as estimated). 3 batches with the estimate alone is there to show why the bound is needed.
 RULES = ((3, 0.0), (3, 0.95))
@@ -178,10 +188,13 @@ def censored_median(values, lower_bounds):
     agree, else '≥ the first'."""
     low = harness.median(values)
     high = harness.median([math.inf if b else v for v, b in zip(values, lower_bounds)])
-    return f"{low:.0f}" if high == low else f"≥ {low:.0f}"
+    if high == low:
+        return f"{low:.0f}"
+    return f"{low:.0f}–{high:.0f}" if math.isfinite(high) else f"≥ {low:.0f}"
 
 
-def markdown(name, rows, reached=()):
+def markdown(name, rows, reached=(), slow=float("nan")):
+    """The study's report; `slow`: slowest_round's factor, for the minutes at the benchmark's slowest round."""
     def pm(r, col, se, scale, digits):
         v, e = float(r[col]) * scale, float(r[se]) * scale
         return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
@@ -263,9 +276,13 @@ def markdown(name, rows, reached=()):
                     + " minutes on 2 cores as run")
             if all(math.isfinite(r[5]) for r in mine):
                 line += ", " + censored_median([r[5] for r in mine], lower) + " with the machine to itself"
+                if math.isfinite(slow):
+                    line += (" (" + censored_median([slow * r[5] for r in mine], lower)
+                             + " at the benchmark's slowest round)")
             if missed:
                 line += (f" ({missed} never reached the target within its run, counted at its whole run's time, "
-                         "a lower bound; the median holds whatever their times are where it is given without '≥')")
+                         "a lower bound: the median lies in the range given, from those times as they are to "
+                         "those times unbounded; '≥' where it has no upper end)")
             lines.append(line + ".")
     return "\n".join(lines) + "\n"
 
@@ -299,7 +316,7 @@ def write(name, docs=None):
         return []
     rows = sorted(harness.read_csv(table), key=lambda r: float(r["rpm"]))
     md, png = docs / f"{name}.md", docs / f"{name}.png"
-    md.write_text(markdown(name, rows, targets_reached(docs, name, rows)))
+    md.write_text(markdown(name, rows, targets_reached(docs, name, rows), slowest_round()))
     chart(name, rows, png)
     return [md, png]
 
