@@ -119,6 +119,14 @@ class InterruptedStudy(unittest.TestCase):
                 self.assertEqual(x, y)
             else:
                 self.assertAlmostEqual(float(x), float(y), delta=1e-9 * max(1.0, abs(float(x))), msg=a[0])
+        # each segment's loop kept, the resumed run's too (those before the interruption from its
+        # progress): as many as segments, of the same lengths as the whole run's
+        runs = [json.loads((folder / "21rpm" / "run.json").read_text())
+                for folder in (self.tmp / "whole" / whole, self.tmp / name.rsplit("_", 1)[1] / name)]
+        for run in runs:
+            self.assertEqual(len(run["loops"]), run["segments"])
+            self.assertTrue(all(loop["loop_s"] > 0 and loop["neighbor_builds"] >= 0 for loop in run["loops"]))
+        self.assertEqual([loop["steps"] for loop in runs[0]["loops"]], [loop["steps"] for loop in runs[1]["loops"]])
         # the series too, snapshot by snapshot
         self.assertEqual((self.tmp / "whole" / whole / "21rpm" / "series_metrics.csv").read_text(),
                          (self.tmp / name.rsplit("_", 1)[1] / name / "21rpm" / "series_metrics.csv").read_text())

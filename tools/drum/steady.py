@@ -356,6 +356,9 @@ class Study:
             previous = done["state"]
             done.update(segments=k, simulated_s=done["simulated_s"] + seconds, cpu_s=done["cpu_s"] + log.cpu_seconds,
                         beads=log.atoms, last_step=harness.snapshots(self.prefix(rpm))[-1][0], state=str(state))
+            # each segment's loop as LIGGGHTS timed it: the rate a speed runs at, kept with its results
+            done.setdefault("loops", []).append({"steps": log.steps, "loop_s": log.loop_time,
+                                                 "neighbor_builds": log.neighbor_builds})
             # The segment's snapshots go into the metrics cache before it counts as recorded: the
             # next segment rewrites the snapshot at its first step (the restart's), whose drum
             # forces differ by the restart's one-step perturbation; the cache keeps this one.
@@ -400,7 +403,7 @@ class Study:
         # run.json last: it marks the speed done (the plan reads it)
         record = {"rpm": rpm, "settings": self.settings, "outcome": outcome, "segments": done["segments"],
                   "simulated_s": done["simulated_s"], "cpu_s": done["cpu_s"], "beads": done["beads"],
-                  "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
+                  "loops": done.get("loops", []), "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
                   "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
