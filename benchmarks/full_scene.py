@@ -21,6 +21,8 @@ Cost: LIGGGHTS loop time (median, and the range over rounds), particle-steps per
 ghosts and neighbour pairs per rank (LIGGGHTS' Nlocal/Nghost/Neighs), neighbour-list builds.
 Writes OUT/full_scene.csv (one row per run) and OUT/full_scene.json."""
 
+import gzip
+import shutil
 import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -83,9 +85,17 @@ def run(args):
     if unknown:
         raise SystemExit(f"full_scene: unknown variant(s) {', '.join(unknown)} (of {', '.join(VARIANTS)})")
 
+    restart = Path(args.restart)
+    restart = restart if restart.is_absolute() else harness.REPO / restart
+    if restart.suffix == ".gz":  # a shipped state: LIGGGHTS reads restart files uncompressed
+        plain = harness.post("full_scene", restart.stem)
+        with gzip.open(restart, "rb") as f, open(plain, "wb") as g:
+            shutil.copyfileobj(f, g)
+        restart = plain
+
     def one(tag, ranks, extra):
         return harness.drum(harness.post(tag + ".log"), np=ranks, period=args.period, rpm=common.RPM, dt=dt,
-                            exact="on", time=args.time, dumpdt=1000, start="restart", restart=args.restart,
+                            exact="on", time=args.time, dumpdt=1000, start="restart", restart=restart,
                             stock=stock, name=tag, **extra)
 
     def variant(name):
@@ -169,6 +179,13 @@ def section(res):
     if res.has("full_scene_long.csv", "full_scene_long.json"):
         text += ("\nLong windows: the study's settings (`fast`) against stock on them and on one rank, "
                  "runs five times longer:\n\n" + common.section_of("full_scene_long", "full_scene")(render)(res))
+    if res.has("full_scene_steady.csv", "full_scene_steady.json"):
+        text += ("\nSteady flow: the same long windows from the chain's steady 21 rpm state, the bed carried by "
+                 "the drum (the main job's shipped state). The long windows above start from the earlier 3 s "
+                 "state (`inputs/drum_L24_21rpm_3s.restart.gz`), whose bed rides on rolling beads and barely "
+                 "turns: fewer neighbour-list builds, a faster loop than a study's speeds see. This is the rate "
+                 "`tools/drum/report.py` converts a study's particle-steps to minutes with:\n\n"
+                 + common.section_of("full_scene_steady", "full_scene")(render)(res))
     if res.has("full_scene_at_once.csv", "full_scene_at_once.json"):
         text += ("\nSeveral runs at once: the study's settings on 2 ranks against two one-rank runs started "
                  "together, long windows, from the main job's shipped state (`gunzip -c "

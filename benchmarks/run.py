@@ -68,7 +68,9 @@ def settings(restart):
         "peers": (peers, [["--steps", "300", "--rounds", "5"]]),
         "full_scene": (full_scene, [["--restart", str(harness.post("settle24/L24_21rpm.restart"))],
                                     ["--restart", str(harness.post("settle24/L24_21rpm.restart")), "--time", "0.1",
-                                     "--variants", "fast,stock fast,1 rank fast", "--stem", "full_scene_long"]]),
+                                     "--variants", "fast,stock fast,1 rank fast", "--stem", "full_scene_long"],
+                                    ["--restart", "inputs/drum_L24_21rpm.restart.gz", "--time", "0.1",
+                                     "--variants", "fast,stock fast,1 rank fast", "--stem", "full_scene_steady"]]),
         "scaling": (scaling, [["--restart", str(harness.post("reduce/drum_L24.restart")), "--period", "0.024",
                                "--ranks", "1,2", "--rounds", "5", "--time", "0.003"]]),
     }
