@@ -200,7 +200,8 @@ class Slip(unittest.TestCase):
                         {"time_s": 0.05 * k, "Hh_m": 0.09, "Hc_m": level(k) + rng.gauss(0.0, 1e-4),
                          "angle_deg": 30.0, "bed_turn_1": 1.0, "wall_roll_1": 0.02, "wall_slip_1": 0.002}
                         for k in range(n)])
-            lines = slip.window_section(docs, ["clean", "tail"], ["clean", "tail"], 3, 0.05)
+            cells = [slip.step_by_window(docs, name, 3, 0.05) for name in ("clean", "tail")]
+            lines = slip.window_section(["clean", "tail"], cells, 3, 0.05)
             clean = next(row for row in lines if row.startswith("| clean |")).rstrip(" |").split(" | ")[1:]
             tail = next(row for row in lines if row.startswith("| tail |")).rstrip(" |").split(" | ")[1:]
             self.assertEqual(len(clean), len(slip.WINDOWS))
@@ -213,7 +214,8 @@ class Slip(unittest.TestCase):
             self.assertEqual(slip.WINDOWS[0], 0.3)
             self.assertTrue(tail[0].startswith("no change"), tail)
             # a study without 27 and 28 rpm has no row; none at all, no section
-            self.assertEqual(slip.window_section(docs, ["none"], ["none"], 3, 0.05), [])
+            self.assertEqual(slip.step_by_window(docs, "none", 3, 0.05), [])
+            self.assertEqual(slip.window_section(["none"], [slip.step_by_window(docs, "none", 3, 0.05)], 3, 0.05), [])
 
     def test_false_alarms_and_power_of_a_step(self):
         # two windows of one state (white noise, 30 snapshots, the last 15 in 3 batches): the

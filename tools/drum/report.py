@@ -133,24 +133,29 @@ def alone_rate(dt, variables=None, benchmark=BENCHMARK):
     """Particle-steps per second of the study's settings (`fast`) on 2 ranks with the machine to
     itself: the median over the benchmark's rounds; nan without the benchmark, or for a study at
     another step or with other settings (`variables`: its drum.in variables; None: not checked)."""
-    csv_path, json_path = Path(f"{benchmark}.csv"), Path(f"{benchmark}.json")
-    if not csv_path.exists() or not json_path.exists():
+    json_path = Path(f"{benchmark}.json")
+    if not json_path.exists():
         return float("nan")
     if variables is not None and any(str(variables.get(k, v)) != v for k, v in FAST.items()):
         return float("nan")
     if not math.isclose(float(harness.read_json(json_path)["dt_s"]), dt, rel_tol=1e-9):
         return float("nan")
-    rates = [float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast"]
+    rates = fast_rates(benchmark)
     return harness.median(rates) if rates else float("nan")
+
+
+def fast_rates(benchmark=BENCHMARK):
+    """The benchmark's `fast` particle-steps per second, one per round ([] without it)."""
+    csv_path = Path(f"{benchmark}.csv")
+    return [float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path)
+            if r["variant"] == "fast"] if csv_path.exists() else []
 
 
 def slowest_round(benchmark=BENCHMARK):
     """The benchmark's median `fast` rate over its slowest round's: how much longer the minutes
     with the machine to itself get at the slowest rate it measured (the same machine's speed
     varies from round to round); nan without the benchmark."""
-    csv_path = Path(f"{benchmark}.csv")
-    rates = [float(r["particle_steps_per_s"]) for r in harness.read_csv(csv_path) if r["variant"] == "fast"] \
-        if csv_path.exists() else []
+    rates = fast_rates(benchmark)
     return harness.median(rates) / min(rates) if rates else float("nan")
 
 
@@ -200,7 +205,8 @@ def censored_median(values, lower_bounds):
 
 
 def markdown(name, rows, reached=(), slow=float("nan")):
-    """The study's report; `slow`: slowest_round's factor, for the minutes at the benchmark's slowest round."""
+    """The study's report; `slow`: slowest_round's factor, for the minutes at the benchmark's
+    slowest round."""
     def pm(r, col, se, scale, digits):
         v, e = float(r[col]) * scale, float(r[se]) * scale
         return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
@@ -250,8 +256,8 @@ def markdown(name, rows, reached=(), slow=float("nan")):
                   "estimate from 3 batches, 2.37 from 5), counted from the speed's start state (the first "
                   "speed's: the study's first state). Minutes on 2 cores, as run: half the CPU time (both ranks "
                   "busy throughout; wall times, which other jobs on the machine lengthen). With the machine to "
-                  "itself: the particle-steps to there at the rate `benchmarks/full_scene.py` measured in steady flow for the "
-                  "study's settings (`fast`, median over its rounds). The averages "
+                  "itself: the particle-steps to there at the rate `benchmarks/full_scene.py` measured in steady "
+                  "flow for the study's settings (`fast`, median over its rounds). The averages "
                   "there beside the speed's final ones (the table above) show what the shorter run would have "
                   "reported. A standard error from 3 batches has 2 degrees of freedom (from 5: 4): as "
                   "estimated it falls short of the true one in 63 % of 3-batch runs (chi-square), and the "

@@ -31,9 +31,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
-from histories import detectable, satterthwaite, welch_dof  # noqa: E402
+from histories import detectable, detectable_sum, satterthwaite, welch_dof  # noqa: E402
 import numpy as np  # noqa: E402
-from scipy import optimize, stats  # noqa: E402
+from scipy import stats  # noqa: E402
 
 # (label, column, scale, unit, digits) of the metrics compared
 METRICS = [("Hc", "Hc_m", 1e3, "mm", 2), ("Hh", "Hh_m", 1e3, "mm", 1), ("angle", "angle_deg", 1.0, "deg", 2),
@@ -270,21 +270,12 @@ def contrast(x, y, alpha):
     return dy - dx, stats.t.ppf(1.0 - alpha / 2.0, dof) * se
 
 
-def contrast_catchable(x, y, alpha, power=0.8, replicas=20000):
+def contrast_catchable(x, y, alpha, power=0.8):
     """The true difference between two studies' steps that `contrast` calls with probability
-    `power`: the contrast simulated (fixed seed), each of its four batch-mean errors estimated from
-    n - 1 degrees of freedom, Satterthwaite's degrees of freedom and the critical t from them."""
-    (_, sx, (s1, n1, s2, n2)), (_, sy, (s3, n3, s4, n4)) = x, y
-    parts = [(s1, n1), (s2, n2), (s3, n3), (s4, n4)]
-    scale = math.hypot(sx, sy)
-    if not (scale > 0 and all(n >= 2 for _, n in parts)):
-        return float("nan")
-    rng = np.random.default_rng(20261205)
-    est = [se * np.sqrt(rng.chisquare(n - 1, replicas) / (n - 1)) for se, n in parts]
-    dof = sum(e ** 2 for e in est) ** 2 / sum(e ** 4 / (n - 1) for e, (_, n) in zip(est, parts))
-    limit = stats.t.ppf(1.0 - alpha / 2.0, dof) * np.sqrt(sum(e ** 2 for e in est))
-    noise = rng.normal(0.0, scale, replicas)
-    return optimize.brentq(lambda d: np.mean(np.abs(d + noise) > limit) - power, 0.0, 20.0 * scale)
+    `power` (x, y as step_change gives them): its four batch-mean errors simulated."""
+    (_, _, (s1, n1, s2, n2)), (_, _, (s3, n3, s4, n4)) = x, y
+    return detectable_sum([(s1, n1), (s2, n2), (s3, n3), (s4, n4)],
+                          lambda dof: stats.t.ppf(1.0 - alpha / 2.0, dof), power)
 
 
 # how "lets go" is read off `bed_turn`, said once for both texts that use it
@@ -512,13 +503,12 @@ def step_by_window(docs, name, batches, alpha):
     return cells
 
 
-def window_section(docs, names, labels, batches, alpha):
-    """The 27 -> 28 rpm step of Hc per study, read with each of WINDOWS: a step that is the tail
-    of a transient (its first speed still drifting) changes verdict with the window; a step the
-    speed change causes does not."""
+def window_section(labels, by_window, batches, alpha):
+    """The 27 -> 28 rpm step of Hc per study (`by_window`: step_by_window's cells per study), read
+    with each of WINDOWS: a step that is the tail of a transient (its first speed still drifting)
+    changes verdict with the window; a step the speed change causes does not."""
     lines = []
-    for name, label in zip(names, labels):
-        cells = step_by_window(docs, name, batches, alpha)
+    for label, cells in zip(labels, by_window):
         if cells:
             lines.append(f"| {label} | " + " | ".join(f"{v} ({d * 1e3:+.2f} ± {c * 1e3:.2f})" if v != "?" else "?"
                                                       for v, d, c in cells) + " |")
@@ -707,17 +697,18 @@ def main(argv=None):
     if a.null != "-" and runs and (docs / a.null).is_dir():
         block = statistics.median(runs)
         scan = [(piece, null_rate(docs, a.null, piece, a.window, a.batches, a.alpha))
-                 for piece in (2 / 3 * block, 5 / 6 * block, block, 7 / 6 * block, 4 / 3 * block)]
-        null = (a.null, block, null_rate(docs, a.null, block, a.window, a.batches, a.alpha), scan)
+                for piece in (2 / 3 * block, 5 / 6 * block, block, 7 / 6 * block, 4 / 3 * block)]
+        null = (a.null, block, scan[2][1], scan)  # (the runs' own piece length, the middle of the scan)
     out = Path(a.out)
     command = "tools/drum/slip.py " + " ".join(f"--study {n} {shlex.quote(l)}" for n, l in a.study) + "".join(
         f" --start {s}" for s in a.start) + f" --window {a.window:g} --batches {a.batches} --alpha {a.alpha:g}" + (
         f" --null {a.null}" if a.null != "study_thesis" else "")
     ramps = [ramp_series(docs, name) for name, _ in a.study]
-    windows = window_section(docs, [n for n, _ in a.study], [l for _, l in a.study], a.batches, a.alpha)
+    by_window = [step_by_window(docs, name, a.batches, a.alpha) for name, _ in a.study]
+    windows = window_section([l for _, l in a.study], by_window, a.batches, a.alpha)
     # a study whose settings are unknown (no run.json) is a set of its own
     sets = [study_settings(docs, name) or (("study", name),) for name, _ in a.study]
-    robust = [[v for v, _, _ in step_by_window(docs, name, a.batches, a.alpha)] for name, _ in a.study]
+    robust = [[v for v, _, _ in cells] for cells in by_window]
     out.with_suffix(".md").write_text(markdown(studies, a.window, a.batches, a.alpha, command, null, ramps, windows,
                                                sets, robust))
     rows = []

@@ -403,7 +403,8 @@ class Study:
         # run.json last: it marks the speed done (the plan reads it)
         record = {"rpm": rpm, "settings": self.settings, "outcome": outcome, "segments": done["segments"],
                   "simulated_s": done["simulated_s"], "cpu_s": done["cpu_s"], "beads": done["beads"],
-                  "loops": done.get("loops", []), "start_state_sha256": start_sha, "state_sha256": sha256(out / "state.restart.gz"),
+                  "loops": done.get("loops", []), "start_state_sha256": start_sha,
+                  "state_sha256": sha256(out / "state.restart.gz"),
                   "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
