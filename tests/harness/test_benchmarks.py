@@ -128,7 +128,21 @@ class Summaries(unittest.TestCase):
         self.assertIn("per round 0.80–0.89): one after the other on 2 ranks pays", reading([40, 40, 40], [90, 100, 95]))
         self.assertIn("per round 0.80–1.14): the rounds disagree", reading([40, 40, 40], [70, 100, 80]))
         # the pair never counts as the fastest two-rank variant
-        self.assertIn("Fastest of ours: fast,", reading([40, 40, 40], [64, 70, 60]))
+        self.assertIn("Fastest of ours by median rate: fast,", reading([40, 40, 40], [64, 70, 60]))
+
+    def test_resorting_read_per_round(self):
+        def reading(fast, sort):
+            rows = [{"variant": name, "round": i + 1, "ranks": 2, "loop_s": loop, "steps": 2500, "beads": 65344,
+                     "particle_steps_per_s": 65344 * 2500 / loop, "nlocal_max": 1, "nlocal_min": 1,
+                     "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1}
+                    for i, (a, b) in enumerate(zip(fast, sort)) for name, loop in (("fast", a), ("sort 25", b))]
+            return full_scene.verdict(full_scene.summary(rows), rows)
+
+        # speed-up per round t(fast) / t(sort 25): 1.25, 1.10, 1.20
+        self.assertIn("t(fast) / t(sort 25) 1.200 (median over rounds; per round 1.10–1.25): faster in every round",
+                      reading([25, 22, 24], [20, 20, 20]))
+        self.assertIn("per round 0.80–0.91): slower in every round", reading([20, 20, 20], [25, 22, 24]))
+        self.assertIn("per round 0.90–1.10): the rounds disagree", reading([18, 22, 20], [20, 20, 20]))
 
     def test_yade_rounds(self):
         out = "x\nyade: round 1, 32672 beads, 300 steps, 29.0 s, 3.38e+05 particle-steps/s, 0 outside the drum\n"

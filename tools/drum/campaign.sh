@@ -38,7 +38,7 @@
 #    at least, the standard errors' 95 % bound within the targets: a 3-batch estimate alone is no
 #    error bar to stop on; tc/81 costs 16 times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
 #    (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
-# 6. Last (the issue asks for it as far as compute allows), study_yade goes on to 28 and 35 rpm,
+# 6. Last (as far as compute allows), study_yade goes on to 28 and 35 rpm,
 #    each steady YADE speed set against the thesis' table at that speed (histories.py
 #    --conventions: docs/drum/conventions_<rpm>rpm.md).
 set -euo pipefail
