@@ -12,6 +12,7 @@ import harness  # noqa: E402
 
 # The timing summary LAMMPS/LIGGGHTS prints after a run (format of LIGGGHTS 3.8's finish.cpp).
 LOG = """Setting up run ...
+Loop time of 1e-06 on 2 procs for 0 steps with 10 atoms
 Loop time of 1.5 on 2 procs for 100 steps with 10 atoms
 
 Nlocal:    5 ave 6 max 4 min
@@ -55,6 +56,7 @@ class Logs(unittest.TestCase):
         self.assertEqual(log.per_rank["Nlocal"], (2078, 2081, 2075))
         self.assertEqual(log.sections, {"Pair": 40.0, "Other": 20.0})
         self.assertEqual(log.neighbor_builds, 7)
+        self.assertEqual(log.runs, [(100, 1.5), (200, 2.5)])  # the `run 0` left out
         self.assertAlmostEqual(log.particle_steps_per_s, 4156 * 200 / 2.5)
         self.assertEqual(log.cpu_seconds, 5.0)
         self.assertEqual(log.grep(r"^drum: done, (\d+) beads kept", cast=int), 4156)

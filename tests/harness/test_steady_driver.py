@@ -110,6 +110,40 @@ class Options(unittest.TestCase):
 
 
 
+class Segment(unittest.TestCase):
+    """A segment's log must hold one run of the steps asked for: its loop time, CPU and the
+    simulated seconds go on record from it, beside the series its snapshots give."""
+
+    def segment_with_log(self, text):
+        with tempfile.TemporaryDirectory() as d:
+            log = Path(d) / "seg.log"
+            log.write_text(text)
+            saved = steady.harness.drum
+            steady.harness.drum = lambda path, np, **variables: steady.harness.Log(log)
+            try:
+                study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5"]))
+                study.work = Path(d)
+                return study.segment(28, 3, Path(d) / "start.restart", 2.0)
+            finally:
+                steady.harness.drum = saved
+
+    LOOP = "Loop time of {t} on 2 procs for {n} steps with 65344 atoms\n"
+
+    def test_one_run_of_the_asked_steps(self):
+        log = self.segment_with_log(self.LOOP.format(t=1e-6, n=0) + self.LOOP.format(t=1000.0, n=100000))
+        self.assertEqual(log.runs, [(100000, 1000.0)])
+
+    def test_a_second_run_in_the_log_stops_the_driver(self):
+        # what a drum.in rewritten during the run did: the run command read twice
+        text = self.LOOP.format(t=1029.0, n=100000) + self.LOOP.format(t=1153.4, n=100000)
+        with self.assertRaisesRegex(steady.harness.RunFailed, r"runs of \[100000, 100000\] steps, the segment asked for one of 100000"):
+            self.segment_with_log(text)
+
+    def test_a_short_run_stops_the_driver(self):
+        with self.assertRaisesRegex(steady.harness.RunFailed, r"runs of \[50000\] steps"):
+            self.segment_with_log(self.LOOP.format(t=500.0, n=50000))
+
+
 class Pack(unittest.TestCase):
     def test_the_same_state_packs_to_the_same_bytes(self):
         # through differently named temporary files, seconds apart: git must see one object

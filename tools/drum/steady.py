@@ -303,6 +303,11 @@ class Study:
         variables.update({"start": "restart", "restart": start} if start else {"start": "grid"})
         harness.say(WHO, f"{rpm} rpm, segment {k}: {seconds:g} s from {start.name if start else 'the grid'} ...")
         log = harness.drum(self.work / f"{rpm}rpm_seg{k}.log", np=a.np, **variables)
+        # one run of the segment's steps, or the record (time, CPU, loops) would not match the series
+        asked = round(seconds / self.dt)
+        if [steps for steps, _ in log.runs] != [asked]:
+            raise harness.RunFailed(f"{log.path}: runs of {[steps for steps, _ in log.runs]} steps, "
+                                    f"the segment asked for one of {asked}")
         return log
 
     def check(self, rpm):

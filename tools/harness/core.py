@@ -1,6 +1,7 @@
 """Options, the scene's constants, and launching LIGGGHTS and the project's tools."""
 
 import argparse
+import itertools
 import os
 import platform
 import re
@@ -16,6 +17,9 @@ REPO = Path(__file__).resolve().parents[2]
 # otherwise PATH (setup.sh installs them to /usr/local/bin).
 _ENV = {"liggghts": "LIGGGHTS", "drum_metrics": "DRUM_METRICS", "collide": "COLLIDE",
         "contact_law": "CONTACT_LAW", "drum_mesh": "DRUM_MESH"}
+
+
+_copies = itertools.count()  # private input copies (threads may run several at once)
 
 
 class RunFailed(RuntimeError):
@@ -67,13 +71,22 @@ def liggghts(script, variables=None, log=None, np=1, check=True, launcher=()):
     from .logs import Log
     log = Path(log) if log else post(Path(script).stem + ".log")
     log.parent.mkdir(parents=True, exist_ok=True)
-    cmd = mpirun(np) + [*launcher, tool_path("liggghts"), "-in", str(script)]
+    # LIGGGHTS reads its input as it goes (and `jump SELF` reopens it): a script rewritten during
+    # a run would be read on from a stale offset, rerunning or skipping commands. Each run reads
+    # a private copy (its includes are read before the run starts).
+    private = post(".inputs", f"{Path(script).stem}_{os.getpid()}_{next(_copies)}{Path(script).suffix}")
+    shutil.copyfile(REPO / script, private)
+    cmd = mpirun(np) + [*launcher, tool_path("liggghts"), "-in", str(private)]
     for k, v in (variables or {}).items():
         cmd += ["-var", k, str(v)]
-    with open(log, "w") as out:
-        r = subprocess.run(cmd, cwd=REPO, stdout=out, stderr=subprocess.STDOUT)
+    try:
+        with open(log, "w") as out:
+            r = subprocess.run(cmd, cwd=REPO, stdout=out, stderr=subprocess.STDOUT)
+    finally:
+        private.unlink(missing_ok=True)
     if check and r.returncode != 0:
-        raise RunFailed(f"{' '.join(cmd)} failed (log {log}):\n{_tail(log.read_text(errors='replace'))}")
+        shown = " ".join(str(script) if c == str(private) else c for c in cmd)  # the script, not its copy
+        raise RunFailed(f"{shown} failed (log {log}):\n{_tail(log.read_text(errors='replace'))}")
     return Log(log, returncode=r.returncode)
 
 

@@ -17,6 +17,8 @@ class Log:
         self.text = self.path.read_text(errors="replace")
         loops = list(_LOOP.finditer(self.text))
         self.has_loop = bool(loops)
+        # (steps, loop seconds) of every run that stepped (set-up `run 0`s left out)
+        self.runs = [(int(m.group(3)), float(m.group(1))) for m in loops if int(m.group(3)) > 0]
         if loops:
             last = loops[-1]
             self.loop_time = float(last.group(1))   # wall seconds of the stepping loop
