@@ -12,7 +12,8 @@ exactRestitution on), short runs of --time simulated seconds, the variants inter
   fast            balance, cylinder and skin 0.3 together (the study's settings)
   stock fast      fast with stock hooke/stiffness: the peer on the same settings
   sort 100, 25    fast with the beads re-sorted in memory by position every 100 / 25 steps
-                  (LIGGGHTS' default, which fast keeps: 1000), so that neighbours sit close in memory
+                  (LIGGGHTS' default, which fast keeps: 1000), so that neighbours sit close in memory;
+                  LIGGGHTS sorts at a neighbour build, so at the first build after that many steps
   1 rank          the mesh variant on one rank: the parallel efficiency t(1) / (2 t(2)) per round
                   of mesh and balance (on one rank the same work)
   1 rank fast     fast on one rank: the parallel efficiency of fast
@@ -194,10 +195,15 @@ def section(res):
         text += ("\nSeveral runs at once: the study's settings on 2 ranks against two one-rank runs started "
                  "together, long windows, from the main job's shipped state (`gunzip -c "
                  "inputs/drum_L24_21rpm.restart.gz > post/full_scene/steady_21rpm.restart`):\n\n" + common.section_of("full_scene_at_once", "full_scene")(render)(res))
+    if res.has("full_scene_efficiency.csv", "full_scene_efficiency.json"):
+        text += ("\nParallel efficiency in steady flow, more rounds: the study's settings on 2 ranks and on one, "
+                 "from the main job's shipped state (the 3 rounds above range over 0.66–1.22):\n\n"
+                 + common.section_of("full_scene_efficiency", "full_scene")(render)(res))
     if res.has("full_scene_sort.csv", "full_scene_sort.json"):
         text += ("\nSorting: the study's settings (`fast`, LIGGGHTS' default re-sort every 1000 steps) against "
-                 "re-sorting the beads by position every 100 and 25 steps (neighbours closer in memory), from the "
-                 "main job's shipped state:\n\n"
+                 "re-sorting the beads by position every 100 and 25 steps (neighbours closer in memory; LIGGGHTS "
+                 "sorts at the first neighbour build after that many steps, here builds come every 18 steps or "
+                 "so), from the main job's shipped state:\n\n"
                  + common.section_of("full_scene_sort", "full_scene")(render)(res))
     return text
 
@@ -225,6 +231,13 @@ def verdict(table, rows):
         text += ("Two runs at once, one rank each (`2 at once`), against one after the other on 2 ranks (`fast`): "
                  f"throughput ratio {harness.median(ratios):.3f} (median over rounds; per round {lo:.2f}–{hi:.2f}): "
                  f"{reading}.\n")
+    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in ("fast", "1 rank fast")}
+    if all(loops.values()):
+        per_round = [one / (2 * two) for one, two in zip(loops["1 rank fast"], loops["fast"])]
+        lo, hi = harness.spread(per_round)
+        text += (f"Parallel efficiency of `fast`, t(1 rank fast) / (2 t(fast)): median {harness.median(per_round):.2f} "
+                 f"over {len(per_round)} rounds, per round {lo:.2f}–{hi:.2f}"
+                 f"{'; every round below 0.95' if hi < 0.95 else '; every round at 0.95 or above' if lo >= 0.95 else ''}.\n")
     for name in ("sort 100", "sort 25"):
         loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in ("fast", name)}
         if all(loops.values()):

@@ -130,6 +130,19 @@ class Summaries(unittest.TestCase):
         # the pair never counts as the fastest two-rank variant
         self.assertIn("Fastest of ours by median rate: fast,", reading([40, 40, 40], [64, 70, 60]))
 
+    def test_parallel_efficiency_per_round(self):
+        def reading(two, one):
+            rows = [{"variant": name, "round": i + 1, "ranks": ranks, "loop_s": loop, "steps": 5000, "beads": 65344,
+                     "particle_steps_per_s": 65344 * 5000 / loop, "nlocal_max": 1, "nlocal_min": 1,
+                     "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1}
+                    for i, (a, b) in enumerate(zip(two, one)) for name, ranks, loop in (("fast", 2, a), ("1 rank fast", 1, b))]
+            return full_scene.verdict(full_scene.summary(rows), rows)
+
+        # t(1) / (2 t(2)) per round: 90/100 = 0.90, 80/100 = 0.80, 100/100 = 1.00
+        self.assertIn("median 0.90 over 3 rounds, per round 0.80–1.00.", reading([50, 50, 50], [90, 80, 100]))
+        self.assertIn("per round 0.80–0.90; every round below 0.95", reading([50, 50, 50], [90, 80, 85]))
+        self.assertIn("per round 0.96–1.10; every round at 0.95 or above", reading([50, 50, 50], [96, 110, 100]))
+
     def test_resorting_read_per_round(self):
         def reading(fast, sort):
             rows = [{"variant": name, "round": i + 1, "ranks": 2, "loop_s": loop, "steps": 2500, "beads": 65344,

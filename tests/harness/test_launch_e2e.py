@@ -23,6 +23,8 @@ class PrivateInput(unittest.TestCase):
             script = Path(d) / "pause.in"
             script.write_text('print "BEFORE"\nshell sleep 3\n' + pad + 'print "AFTER"\n')
             result = {}
+            stale = harness.post(".inputs", "pause_4194304999_0.in")  # a pid no process has
+            stale.write_text("left by a killed driver\n")
             run = threading.Thread(target=lambda: result.update(log=harness.liggghts(script, log=Path(d) / "pause.log")))
             run.start()
             time.sleep(1.5)
@@ -33,7 +35,12 @@ class PrivateInput(unittest.TestCase):
             run.join()
             printed = [line for line in result["log"].text.splitlines() if line in ("BEFORE", "AFTER", "LATER")]
         self.assertEqual(printed, ["BEFORE", "AFTER"])
-        self.assertFalse(list(harness.post(".inputs").glob("pause_*")), "the copy is removed after the run")
+        self.assertFalse(list(harness.post(".inputs").glob("pause_*")),
+                         "the run's copy is removed after it, a dead driver's before it")
+
+    def test_a_missing_script_is_named(self):
+        with self.assertRaisesRegex(harness.RunFailed, "no_such.in: no such input script"):
+            harness.liggghts(Path("inputs/no_such.in"))
 
 
 if __name__ == "__main__":

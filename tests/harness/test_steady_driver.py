@@ -114,7 +114,7 @@ class Segment(unittest.TestCase):
     """A segment's log must hold one run of the steps asked for: its loop time, CPU and the
     simulated seconds go on record from it, beside the series its snapshots give."""
 
-    def segment_with_log(self, text):
+    def segment_with_log(self, text, seconds=2.0):
         with tempfile.TemporaryDirectory() as d:
             log = Path(d) / "seg.log"
             log.write_text(text)
@@ -123,7 +123,7 @@ class Segment(unittest.TestCase):
             try:
                 study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5"]))
                 study.work = Path(d)
-                return study.segment(28, 3, Path(d) / "start.restart", 2.0)
+                return study.segment(28, 3, Path(d) / "start.restart", seconds)
             finally:
                 steady.harness.drum = saved
 
@@ -138,6 +138,11 @@ class Segment(unittest.TestCase):
         text = self.LOOP.format(t=1029.0, n=100000) + self.LOOP.format(t=1153.4, n=100000)
         with self.assertRaisesRegex(steady.harness.RunFailed, r"runs of \[100000, 100000\] steps, the segment asked for one of 100000"):
             self.segment_with_log(text)
+
+    def test_steps_counted_as_liggghts_rounds_them(self):
+        # 2.5 steps: drum.in's round() gives 3 (halves up), Python's round() would say 2
+        log = self.segment_with_log(self.LOOP.format(t=0.1, n=3), seconds=5e-5)
+        self.assertEqual(log.runs, [(3, 0.1)])
 
     def test_a_short_run_stops_the_driver(self):
         with self.assertRaisesRegex(steady.harness.RunFailed, r"runs of \[50000\] steps"):

@@ -304,7 +304,8 @@ class Study:
         harness.say(WHO, f"{rpm} rpm, segment {k}: {seconds:g} s from {start.name if start else 'the grid'} ...")
         log = harness.drum(self.work / f"{rpm}rpm_seg{k}.log", np=a.np, **variables)
         # one run of the segment's steps, or the record (time, CPU, loops) would not match the series
-        asked = round(seconds / self.dt)
+        # as drum.in counts them: round(time/dt) in LIGGGHTS rounds halves up
+        asked = math.floor(float(f"{seconds:.10g}") / self.dt + 0.5)
         if [steps for steps, _ in log.runs] != [asked]:
             raise harness.RunFailed(f"{log.path}: runs of {[steps for steps, _ in log.runs]} steps, "
                                     f"the segment asked for one of {asked}")

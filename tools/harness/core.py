@@ -22,6 +22,14 @@ _ENV = {"liggghts": "LIGGGHTS", "drum_metrics": "DRUM_METRICS", "collide": "COLL
 _copies = itertools.count()  # private input copies (threads may run several at once)
 
 
+def _forget_copies():
+    """Removes the input copies of drivers no longer alive (a killed driver leaves its copy)."""
+    for f in (REPO / "post" / ".inputs").glob("*_*_*.*"):
+        pid = f.stem.rsplit("_", 2)[-2]
+        if pid.isdigit() and not Path(f"/proc/{pid}").exists():
+            f.unlink(missing_ok=True)
+
+
 class RunFailed(RuntimeError):
     """A LIGGGHTS run or a tool that exited non-zero; the message ends with its output's tail."""
 
@@ -71,9 +79,12 @@ def liggghts(script, variables=None, log=None, np=1, check=True, launcher=()):
     from .logs import Log
     log = Path(log) if log else post(Path(script).stem + ".log")
     log.parent.mkdir(parents=True, exist_ok=True)
-    # LIGGGHTS reads its input as it goes (and `jump SELF` reopens it): a script rewritten during
-    # a run would be read on from a stale offset, rerunning or skipping commands. Each run reads
-    # a private copy (its includes are read before the run starts).
+    # LIGGGHTS reads its input as it goes (and `jump SELF` rewinds it): a script rewritten in place
+    # during a run would be read on from a stale offset, rerunning or skipping commands. Each run
+    # reads a private copy (its includes are read before the run starts).
+    if not (REPO / script).is_file():
+        raise RunFailed(f"{script}: no such input script")
+    _forget_copies()
     private = post(".inputs", f"{Path(script).stem}_{os.getpid()}_{next(_copies)}{Path(script).suffix}")
     shutil.copyfile(REPO / script, private)
     cmd = mpirun(np) + [*launcher, tool_path("liggghts"), "-in", str(private)]
