@@ -124,7 +124,13 @@ class Report(unittest.TestCase):
                 series = report.harness.read_csv(folder / "series_metrics.csv")
                 t, verdict = report.time_to_target(series, run, rpm, float(settings["variables"]["dt"]),
                                                    settings["min_batches"], settings.get("confidence", 0.0))
-                self.assertAlmostEqual(t, run["simulated_s"], places=6, msg=f"{name} {rpm} rpm")
+                if "note" in run:
+                    # a run whose record says it ran other than asked (study_bound's 28 rpm: a segment
+                    # ran twice its length, so its driver checked later than the rule would have): the
+                    # rule, replayed where it checks, stops there or before, never after
+                    self.assertLessEqual(t, run["simulated_s"] + 1e-9, msg=f"{name} {rpm} rpm")
+                else:
+                    self.assertAlmostEqual(t, run["simulated_s"], places=6, msg=f"{name} {rpm} rpm")
                 self.assertEqual(int(verdict["done"]), 1)
                 checked.add((name, rpm, float(series[0]["time_s"]) == 0.0, settings.get("confidence", 0.0) > 0))
         self.assertGreaterEqual(len({(n, r) for n, r, _, _ in checked if n == "study_thesis"}), 9)
