@@ -231,16 +231,15 @@ def verdict(table, rows):
         text += ("Two runs at once, one rank each (`2 at once`), against one after the other on 2 ranks (`fast`): "
                  f"throughput ratio {harness.median(ratios):.3f} (median over rounds; per round {lo:.2f}–{hi:.2f}): "
                  f"{reading}.\n")
-    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in ("fast", "1 rank fast")}
-    if all(loops.values()):
+    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in {r["variant"] for r in rows}}
+    if loops.get("fast") and loops.get("1 rank fast"):
         per_round = [one / (2 * two) for one, two in zip(loops["1 rank fast"], loops["fast"])]
         lo, hi = harness.spread(per_round)
         text += (f"Parallel efficiency of `fast`, t(1 rank fast) / (2 t(fast)): median {harness.median(per_round):.2f} "
                  f"over {len(per_round)} rounds, per round {lo:.2f}–{hi:.2f}"
                  f"{'; every round below 0.95' if hi < 0.95 else '; every round at 0.95 or above' if lo >= 0.95 else ''}.\n")
     for name in ("sort 100", "sort 25"):
-        loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in ("fast", name)}
-        if all(loops.values()):
+        if loops.get("fast") and loops.get(name):
             ratios = [a / b for a, b in zip(loops["fast"], loops[name])]
             lo, hi = harness.spread(ratios)
             reading = ("faster in every round" if lo > 1 else "slower in every round" if hi < 1

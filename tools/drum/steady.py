@@ -306,8 +306,9 @@ class Study:
         # one run of the segment's steps, or the record (time, CPU, loops) would not match the series
         # as drum.in counts them: round(time/dt) in LIGGGHTS rounds halves up
         asked = math.floor(float(f"{seconds:.10g}") / self.dt + 0.5)
-        if [steps for steps, _ in log.runs] != [asked]:
-            raise harness.RunFailed(f"{log.path}: runs of {[steps for steps, _ in log.runs]} steps, "
+        ran = [steps for steps, _ in log.runs]
+        if ran != [asked]:
+            raise harness.RunFailed(f"{log.path}: runs of {ran} steps, "
                                     f"the segment asked for one of {asked}")
         return log
 
