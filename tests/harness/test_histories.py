@@ -94,6 +94,47 @@ class Histories(unittest.TestCase):
                          histories.detectable(a["m0_se_u"], 5, b["m0_se_u"], 5, critical, 0.5))
         self.assertLess(rows[0]["detectable"], histories.compare(a, b, METRICS, power=0.8)[0]["detectable"])
 
+    def test_at_least_is_the_exact_tail(self):
+        import itertools
+        probabilities = [0.1, 0.3, 0.5, 0.05, 0.9]
+        for k in range(len(probabilities) + 2):
+            exact = sum(math.prod(q if hit else 1 - q for q, hit in zip(probabilities, hits))
+                        for hits in itertools.product((0, 1), repeat=len(probabilities)) if sum(hits) >= k)
+            self.assertAlmostEqual(histories.at_least(k, probabilities), exact, places=12)
+
+    def test_the_count_beyond_two_holds_its_rate_and_sees_error_bars_too_small(self):
+        # three speeds of 7 metrics, 5 batches a side, drawn from one state; then with every
+        # reported SE 0.6 of the true one (error bars 40 % small)
+        def trials(shrink, n, seed):
+            rng = np.random.default_rng(seed)
+            counts, expected, flagged = [], [], 0
+            for _ in range(n):
+                rows = []
+                for _ in range(3):
+                    a, b = history(rng, [0] * 7), history(rng, [0] * 7)
+                    for r in (a, b):
+                        for m in METRICS:
+                            r[m["se_column"]] *= shrink
+                    rows += histories.compare(a, b, METRICS)
+                k, chances = histories.beyond(rows)
+                counts.append(k)
+                expected.append(sum(chances))
+                flagged += "may be somewhat small" in histories.pooled(rows)
+            return np.mean(counts), np.std(counts) / math.sqrt(n), np.mean(expected), flagged / n
+        n = 1000
+        count, count_sd, expected, flagged = trials(1.0, n, 11)
+        # the Student-t chance at Satterthwaite's dof a little above the check's own (measured 1.70
+        # against 1.84 of 21 rows): never below it, and not so far above that the count could not
+        # fail (normal tails would expect 0.96, one degree of freedom 6.2)
+        self.assertLess(count, expected + 4 * count_sd, (count, expected))
+        self.assertGreater(count, 0.8 * expected, (count, expected))
+        # flagged at most at its nominal 0.05 (binomial sd 0.0069; measured 0.024)
+        self.assertLess(flagged, 0.05 + 4 * math.sqrt(0.05 * 0.95 / n), flagged)
+        # error bars 40 % small: flagged in most runs (measured 0.70; each speed's Bonferroni check,
+        # failing anywhere, 0.67 at 0.12 false alarms)
+        self.assertGreater(trials(0.6, n, 12)[3], 0.5)
+
+
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)
         b = dict(a)

@@ -148,11 +148,17 @@ done
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
+  both=()  # 7 rpm is one history in both (the same start and series)
   for rpm in 14 21 28 35 42 49 56 63; do
     grep -q "^$rpm," docs/drum/study_bound.csv || continue
+    both+=("$rpm")
     "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm "$rpm" \
       --out "docs/drum/histories_bound/${rpm}rpm.md" || echo "campaign: the two histories of $rpm rpm disagree, or the comparison failed (above)"
   done
+  # all speeds at once: how many rows lie beyond 2 standard errors, against chance
+  list=$(IFS=,; echo "${both[*]}")
+  "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm "$list" \
+    --out docs/drum/histories_bound/README.md > /dev/null || true  # each speed's verdict: above
   save "Drum: study_thesis against study_bound, speed by speed" docs/drum/histories_bound
 fi
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
