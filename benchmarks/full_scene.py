@@ -216,9 +216,9 @@ def verdict(table, rows):
     text = (f"Fastest of ours by median rate: {best['variant']}, {best['psps']:.3g} particle-steps/s on 2 ranks{efficiency} (the per-round ratios below say whether a gap is measurable). cylinder and the skins were measured alone on top of `balance`, fast "
             f"combines them; runs of {int(rows[0]['steps'])} steps (the drum study's segment logs give the "
             "long-window rate).\n")
+    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in {r["variant"] for r in rows}}
     for ours, stock in (("balance", "stock"), ("fast", "stock fast")):
-        loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in (ours, stock)}
-        if all(loops.values()):
+        if loops.get(ours) and loops.get(stock):
             text += (f"Ours (`{ours}`) against stock `hooke/stiffness` given the same constants, same scene and "
                      f"settings (`{stock}`): loop-time ratio ours / stock "
                      f"{harness.median_ratio(loops[ours], loops[stock]):.3f} (median over rounds).\n")
@@ -231,7 +231,6 @@ def verdict(table, rows):
         text += ("Two runs at once, one rank each (`2 at once`), against one after the other on 2 ranks (`fast`): "
                  f"throughput ratio {harness.median(ratios):.3f} (median over rounds; per round {lo:.2f}–{hi:.2f}): "
                  f"{reading}.\n")
-    loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in {r["variant"] for r in rows}}
     if loops.get("fast") and loops.get("1 rank fast"):
         per_round = [one / (2 * two) for one, two in zip(loops["1 rank fast"], loops["fast"])]
         lo, hi = harness.spread(per_round)

@@ -28,6 +28,15 @@ import liggghts_round  # noqa: E402
 NAN = float("nan")
 
 
+def verdict_of(rounds, steps=5000):
+    """full_scene's verdict on synthetic rounds: [[(variant, ranks, loop_s, beads), ...] per round]."""
+    rows = [{"variant": name, "round": i + 1, "ranks": ranks, "loop_s": loop, "steps": steps, "beads": beads,
+             "particle_steps_per_s": beads * steps / loop, "nlocal_max": 1, "nlocal_min": 1,
+             "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1}
+            for i, runs in enumerate(rounds) for name, ranks, loop, beads in runs]
+    return full_scene.verdict(full_scene.summary(rows), rows)
+
+
 class Stability(unittest.TestCase):
     def test_classify(self):
         self.assertEqual(stability.classify(False, 0, 2009, NAN, 1e-3), "stopped")
@@ -109,18 +118,8 @@ class Summaries(unittest.TestCase):
         self.assertEqual((pair.procs, pair.loop_time, pair.atoms), (2, 80.0, 2 * 65344))
         self.assertAlmostEqual(pair.particle_steps_per_s, 2 * 65344 * 5000 / 80.0)
 
-        def rows(fast, at_once):
-            out = []
-            for i, (a, b) in enumerate(zip(fast, at_once)):
-                for name, loop, beads in (("fast", a, 65344), ("2 at once", b, 2 * 65344)):
-                    out.append({"variant": name, "round": i + 1, "ranks": 2, "loop_s": loop, "steps": 5000,
-                                "beads": beads, "particle_steps_per_s": beads * 5000 / loop, "nlocal_max": 1,
-                                "nlocal_min": 1, "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1})
-            return out
-
         def reading(fast, at_once):
-            r = rows(fast, at_once)
-            return full_scene.verdict(full_scene.summary(r), r)
+            return verdict_of([[("fast", 2, a, 65344), ("2 at once", 2, b, 2 * 65344)] for a, b in zip(fast, at_once)])
 
         # throughput ratio per round: 2 t(fast) / t(2 at once)
         self.assertIn("ratio 1.250 (median over rounds; per round 1.14–1.33): two at once pay in every round",
@@ -132,11 +131,7 @@ class Summaries(unittest.TestCase):
 
     def test_parallel_efficiency_per_round(self):
         def reading(two, one):
-            rows = [{"variant": name, "round": i + 1, "ranks": ranks, "loop_s": loop, "steps": 5000, "beads": 65344,
-                     "particle_steps_per_s": 65344 * 5000 / loop, "nlocal_max": 1, "nlocal_min": 1,
-                     "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1}
-                    for i, (a, b) in enumerate(zip(two, one)) for name, ranks, loop in (("fast", 2, a), ("1 rank fast", 1, b))]
-            return full_scene.verdict(full_scene.summary(rows), rows)
+            return verdict_of([[("fast", 2, a, 65344), ("1 rank fast", 1, b, 65344)] for a, b in zip(two, one)])
 
         # t(1) / (2 t(2)) per round: 90/100 = 0.90, 80/100 = 0.80, 100/100 = 1.00
         self.assertIn("median 0.90 over 3 rounds, per round 0.80–1.00.", reading([50, 50, 50], [90, 80, 100]))
@@ -145,11 +140,7 @@ class Summaries(unittest.TestCase):
 
     def test_resorting_read_per_round(self):
         def reading(fast, sort):
-            rows = [{"variant": name, "round": i + 1, "ranks": 2, "loop_s": loop, "steps": 2500, "beads": 65344,
-                     "particle_steps_per_s": 65344 * 2500 / loop, "nlocal_max": 1, "nlocal_min": 1,
-                     "neighs_max": 1, "neighs_min": 1, "neighbor_builds": 1}
-                    for i, (a, b) in enumerate(zip(fast, sort)) for name, loop in (("fast", a), ("sort 25", b))]
-            return full_scene.verdict(full_scene.summary(rows), rows)
+            return verdict_of([[("fast", 2, a, 65344), ("sort 25", 2, b, 65344)] for a, b in zip(fast, sort)], 2500)
 
         # speed-up per round t(fast) / t(sort 25): 1.25, 1.10, 1.20
         self.assertIn("t(fast) / t(sort 25) 1.200 (median over rounds; per round 1.10–1.25): faster in every round",
