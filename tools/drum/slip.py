@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
 from harness import charts  # noqa: E402
-from histories import detectable, detectable_sum, satterthwaite, welch_dof  # noqa: E402
+from histories import detectable_sum, satterthwaite, welch_dof  # noqa: E402
 import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
 
@@ -253,9 +253,10 @@ def step_change(speeds, col, a=27.0, b=28.0):
 
 
 def catchable(parts, alpha, power=0.8):
-    """The true change a step's test (two-sided Welch at alpha) catches with probability `power`."""
+    """The true change a step's test (two-sided Welch at alpha, Satterthwaite's degrees of freedom,
+    as `change`) catches with probability `power`."""
     sa, na, sb, nb = parts
-    return detectable(sa, na, sb, nb, lambda dof: stats.t.ppf(1.0 - alpha / 2.0, dof), power)
+    return detectable_sum([(sa, na), (sb, nb)], lambda dof: stats.t.ppf(1.0 - alpha / 2.0, dof), power)
 
 
 def contrast(x, y, alpha):
