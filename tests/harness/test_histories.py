@@ -162,6 +162,40 @@ class Histories(unittest.TestCase):
         self.assertGreater(flagged, 0.35, flagged)
         self.assertGreater(flagged, failed + 0.1, (flagged, failed))
 
+    def test_the_command_line_checks_each_speed_then_all_at_once(self):
+        import tempfile
+        sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+        import harness
+        metrics = harness.drum_metric_table()
+        rng = np.random.default_rng(5)
+
+        def table(path, shift):
+            rows = []
+            for rpm in (14.0, 21.0):
+                x = rng.normal(0.0, 1.0, (5, len(metrics)))
+                row = {"rpm": rpm, "batches": 5.0, "revolutions": 5.0}
+                for m, col in zip(metrics, x.T):
+                    row[m["column"]] = col.mean() + (shift if rpm == 21.0 else 0.0)
+                    row[m["se_column"]] = col.std(ddof=1) / math.sqrt(5)
+                rows.append(row)
+            harness.write_csv(path, rows)
+
+        with tempfile.TemporaryDirectory() as d:
+            a, b, out = Path(d, "a.csv"), Path(d, "b.csv"), Path(d, "out.md")
+            table(a, 0.0)
+            table(b, 100.0)  # 21 rpm far apart in every metric
+            self.assertEqual(histories.main([str(a), str(b), "--rpm", "14", "--out", str(out)]), 0)
+            self.assertNotIn("Over these speeds", out.read_text())
+            self.assertEqual(histories.main([str(a), str(b), "--rpm", "14,21", "--out", str(out)]), 1)
+            text = out.read_text()
+            self.assertIn("14 rpm, A:", text)
+            self.assertIn("21 rpm, A:", text)
+            self.assertIn("DISAGREE", text)
+            self.assertIn(f"of {2 * len(metrics)} rows", text)
+            self.assertIn("may be somewhat small", text)
+            with self.assertRaises(SystemExit):  # a speed listed twice would count twice
+                histories.main([str(a), str(b), "--rpm", "14,14"])
+
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)
         b = dict(a)

@@ -156,9 +156,11 @@ if [[ ${#now[@]} -eq 0 ]]; then
       --out "docs/drum/histories_bound/${rpm}rpm.md" || echo "campaign: the two histories of $rpm rpm disagree, or the comparison failed (above)"
   done
   # all speeds at once: how many rows lie beyond 2 standard errors, against chance
-  list=$(IFS=,; echo "${both[*]}")
-  "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm "$list" \
-    --out docs/drum/histories_bound/README.md > /dev/null || true  # each speed's verdict: above
+  if [[ ${#both[@]} -gt 0 ]]; then
+    list=$(IFS=,; echo "${both[*]}")
+    "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm "$list" \
+      --out docs/drum/histories_bound/README.md > /dev/null || true  # each speed's verdict: above
+  fi
   save "Drum: study_thesis against study_bound, speed by speed" docs/drum/histories_bound
 fi
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then

@@ -167,9 +167,13 @@ def pooled(rows, t=2.0):
 
 def speeds(text):
     try:
-        return [float(x) for x in text.split(",")]
+        out = [float(x) for x in text.split(",")]
     except ValueError:
         raise argparse.ArgumentTypeError(f"--rpm wants speeds separated by commas, got {text!r}") from None
+    twice = sorted({x for x in out if out.count(x) > 1})
+    if twice:  # it would count that speed's rows twice
+        raise argparse.ArgumentTypeError(f"--rpm lists {', '.join(f'{x:g}' for x in twice)} more than once")
+    return out
 
 
 def main(argv=None):
