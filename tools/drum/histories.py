@@ -18,10 +18,13 @@ Agreement is only as telling as the test's power: each row also gives the true d
 check would catch with 80 % probability (the check simulated at these standard errors and
 batch counts), so that "agree" reads as "no difference as large as this".
 
-  tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/history_21rpm_settled.csv --rpm 21 \
+  tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/history_21rpm_from28.csv --rpm 21 \
       --out docs/drum/histories_21rpm.md
-  tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm 14,21,28 \
+  tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_bound.csv --rpm 14,21,28,35 \
       --out docs/drum/histories_bound/README.md
+
+With several speeds, after each speed's own check, the rows of all of them at once: how many lie
+beyond 2 combined standard errors against the count error bars that hold give (`pooled`).
 """
 
 import argparse
