@@ -33,10 +33,13 @@
 #    achieves it (the report's figure for it so far is a replay on study_thesis). 7-28 rpm take more
 #    than an hour each, so 35 rpm, the fifth of nine, decides whether the median is within an hour.
 # 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
-#    (1.23e-6 s) with the nominal law, to a steady state with the recommended rule (3 revolutions
-#    at least, the standard errors' 95 % bound within the targets: a 3-batch estimate alone is no
-#    error bar to stop on; tc/81 costs 16 times tc/5, about 17 hours of 2 cores), each against the chain's tc/5 with exactRestitution
-#    (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
+#    (1.23e-6 s) with the nominal law, to a steady state with the recommended rule's bound (the
+#    standard errors' 95 % bound within the targets) and 5 revolutions at least, as many as the
+#    chain's tc/5 (study_thesis) has: the check runs at the smaller side's degrees of freedom, and
+#    with 3 batches (2 degrees of freedom) it would catch only differences of 17 combined standard
+#    errors, with 5 a side 6.9. Each against the chain's tc/5 with exactRestitution
+#    (tools/drum/histories.py --timesteps). tc/81 costs 16 times tc/5 per simulated second (about
+#    15 s simulated: a day or more of 2 cores). Short segments, so a checkpoint loses little.
 # 6. study_bound on to 63 rpm: from 14 rpm on a second history of each speed (each starts from a
 #    state study_thesis did not pass through), set against study_thesis with
 #    tools/drum/histories.py (docs/drum/histories_bound/).
@@ -138,7 +141,7 @@ steady "${bound[@]}" --speeds 7,14,21,28,35
 for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
   IFS=: read -r step label segment <<< "$dt"
   steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 3 --confidence 0.95
+    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 5 --confidence 0.95
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/dt_$label.csv" --rpm 21 --timesteps \
       --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
