@@ -208,6 +208,12 @@ def section(res):
     return text
 
 
+def read_rounds(lo, hi, above, below):
+    """What per-round ratios spanning lo..hi say: `above` when every round is above 1, `below` when
+    every one is below, else that the rounds disagree."""
+    return above if lo > 1 else below if hi < 1 else "the rounds disagree: no difference measurable at this noise"
+
+
 def verdict(table, rows):
     """The fastest two-rank variant, and ours against stock on the same scene and settings."""
     two = [r for r in table if r["ranks"] == 2 and not r["variant"].startswith("stock") and r["variant"] not in AT_ONCE]
@@ -226,8 +232,7 @@ def verdict(table, rows):
     if all(at_once.values()):
         ratios = [a / b for a, b in zip(at_once["2 at once"], at_once["fast"])]
         lo, hi = harness.spread(ratios)
-        reading = ("two at once pay in every round" if lo > 1 else "one after the other on 2 ranks pays in every round"
-                   if hi < 1 else "the rounds disagree: no difference measurable at this noise")
+        reading = read_rounds(lo, hi, "two at once pay in every round", "one after the other on 2 ranks pays in every round")
         text += ("Two runs at once, one rank each (`2 at once`), against one after the other on 2 ranks (`fast`): "
                  f"throughput ratio {harness.median(ratios):.3f} (median over rounds; per round {lo:.2f}–{hi:.2f}): "
                  f"{reading}.\n")
@@ -241,8 +246,7 @@ def verdict(table, rows):
         if loops.get("fast") and loops.get(name):
             ratios = [a / b for a, b in zip(loops["fast"], loops[name])]
             lo, hi = harness.spread(ratios)
-            reading = ("faster in every round" if lo > 1 else "slower in every round" if hi < 1
-                       else "the rounds disagree: no difference measurable at this noise")
+            reading = read_rounds(lo, hi, "faster in every round", "slower in every round")
             text += (f"`{name}` against `fast`: speed-up t(fast) / t({name}) {harness.median(ratios):.3f} (median "
                      f"over rounds; per round {lo:.2f}–{hi:.2f}): {reading}.\n")
     return text + "\n"
