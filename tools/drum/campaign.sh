@@ -32,20 +32,23 @@
 #    (--min-batches 3 --confidence 0.95), first to 35 rpm: the time to the target as the driver
 #    achieves it (the report's figure for it so far is a replay on study_thesis). 7-28 rpm take more
 #    than an hour each, so 35 rpm, the fifth of nine, decides whether the median is within an hour.
-# 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 and the thesis' tc/81
-#    (1.23e-6 s) with the nominal law, to a steady state with the recommended rule's bound (the
-#    standard errors' 95 % bound within the targets) and 5 revolutions at least, as many as the
-#    chain's tc/5 (study_thesis) has: the check runs at the smaller side's degrees of freedom, and
-#    with 3 batches (2 degrees of freedom) it would catch only differences of 17 combined standard
-#    errors, with 5 a side 6.9. Each against the chain's tc/5 with exactRestitution
-#    (tools/drum/histories.py --timesteps). tc/81 costs 16 times tc/5 per simulated second (about
-#    15 s simulated: a day or more of 2 cores). Short segments, so a checkpoint loses little.
-# 6. study_bound on to 63 rpm: from 14 rpm on a second history of each speed (each starts from a
-#    state study_thesis did not pass through), set against study_thesis with
-#    tools/drum/histories.py (docs/drum/histories_bound/).
-# 7. Last (as far as compute allows), study_yade goes on to 28 and 35 rpm,
-#    each steady YADE speed set against the thesis' table at that speed (histories.py
-#    --conventions: docs/drum/conventions_<rpm>rpm.md).
+# 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 (here) and the thesis'
+#    tc/81 (1.23e-6 s, step 7) with the nominal law, to a steady state with the recommended rule's
+#    bound (the standard errors' 95 % bound within the targets) and 5 revolutions at least, as many
+#    as the chain's tc/5 (study_thesis) has: the check runs at the smaller side's degrees of
+#    freedom, and with 3 batches (2 degrees of freedom) it would catch only differences of 17
+#    combined standard errors, with 5 a side 6.9. Each against the chain's tc/5 with
+#    exactRestitution (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
+# 6. study_yade goes on to 28 and 35 rpm (about 4 hours), each steady YADE speed set against the
+#    thesis' table at that speed (histories.py --conventions: docs/drum/conventions_<rpm>rpm.md):
+#    the thesis' head drops at 28 rpm and rises from 35, the chain's (thesis' table) rises to 28
+#    and drops by 35; do YADE's conventions, whose bed lets go during 26-28 rpm in the ramp, give
+#    the thesis' drop? Before tc/81, which costs 16 times tc/5 per simulated second (about 15 s
+#    simulated: a day or more of 2 cores).
+# 7. tc/81 as in 5.
+# 8. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
+#    each speed (each starts from a state study_thesis did not pass through), set against
+#    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 mkdir -p post
@@ -138,8 +141,9 @@ fi
 if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 bound=(--name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60)
 steady "${bound[@]}" --speeds 7,14,21,28,35
-for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
-  IFS=: read -r step label segment <<< "$dt"
+# one timestep against the chain's tc/5 (exactRestitution) at 21 rpm, from its 21 rpm state
+timestep() {
+  local step=$1 label=$2 segment=$3
   steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 5 --confidence 0.95
   if [[ ${#now[@]} -eq 0 ]]; then
@@ -147,7 +151,23 @@ for dt in 5e-6:tc20:0.5 1.23e-6:tc81:0.25; do
       --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
     save "Drum: 21 rpm at tc/5 against $label at thesis scale" "docs/drum/timestep_21rpm_$label.md"
   fi
-done
+}
+timestep 5e-6 tc20 0.5
+if ready docs/drum/study_yade/21rpm/state.restart.gz; then
+  steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+    "${yade[@]}" --segment 2 --cap 40
+fi
+if [[ ${#now[@]} -eq 0 ]]; then
+  # each steady YADE speed against the thesis' table at the same speed (a difference: the conventions')
+  for rpm in 21 28 35; do
+    if grep -q "^$rpm," docs/drum/study_yade.csv; then
+      "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_yade.csv --rpm "$rpm" --conventions \
+        --out "docs/drum/conventions_${rpm}rpm.md" || true  # exits 1 where they differ: the answer, in the file
+    fi
+  done
+  save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
+fi
+timestep 1.23e-6 tc81 0.25
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
@@ -163,18 +183,4 @@ if [[ ${#now[@]} -eq 0 ]]; then
       || echo "campaign: two histories of a speed disagree, or the comparison failed (docs/drum/histories_bound/README.md)"
   fi
   save "Drum: study_thesis against study_bound, speed by speed" docs/drum/histories_bound
-fi
-if ready docs/drum/study_yade/21rpm/state.restart.gz; then
-  steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    "${yade[@]}" --segment 2 --cap 40
-fi
-if [[ ${#now[@]} -eq 0 ]]; then
-  # each steady YADE speed against the thesis' table at the same speed (a difference: the conventions')
-  for rpm in 21 28 35; do
-    if grep -q "^$rpm," docs/drum/study_yade.csv; then
-      "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_yade.csv --rpm "$rpm" --conventions \
-        --out "docs/drum/conventions_${rpm}rpm.md" || true  # exits 1 where they differ: the answer, in the file
-    fi
-  done
-  save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
 fi
