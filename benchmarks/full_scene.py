@@ -2,8 +2,8 @@
 """Speed of the full thesis scene: each lever measured on the 65k-bead drum from one settled state.
 
 From --restart (the 24 mm scene, settled), at the recommended settings (dt = tc/5 with
-exactRestitution on), short runs of --time simulated seconds, the variants interleaved over
---rounds (A B C ... A B C ...):
+exactRestitution on; --ratio and --exact for another timestep), short runs of --time simulated
+seconds, the variants interleaved over --rounds (A B C ... A B C ...):
   mesh            static mesh with a surface velocity, rank cut in the middle of the box (the old default)
   balance         the same with the rank cut at the beads' median (-var balance on)
   cylinder        balance, and the drum as a primitive cylinder (-var wall cylinder)
@@ -11,6 +11,9 @@ exactRestitution on), short runs of --time simulated seconds, the variants inter
   stock           balance with stock hooke/stiffness fed the same (exact) constants: the peer
   fast            balance, cylinder and skin 0.3 together (the study's settings)
   stock fast      fast with stock hooke/stiffness: the peer on the same settings
+  fast 0.2, 0.1, 0.05  fast with a neighbour skin of 0.2 / 0.1 / 0.05 bead diameters: at a smaller timestep a
+                  bead moves less per step, so a thinner skin (fewer pairs to check every step)
+                  costs fewer extra neighbour-list builds than at tc/5
   sort 100, 25    fast with the beads re-sorted in memory by position every 100 / 25 steps
                   (LIGGGHTS' default, which fast keeps: 1000), so that neighbours sit close in memory;
                   LIGGGHTS sorts at a neighbour build, so at the first build after that many steps
@@ -30,11 +33,13 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from scipy import stats
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 import harness  # noqa: E402
 import common  # noqa: E402
 
-RATIO = 5  # dt = tc/5 with exactRestitution on: the recommended setting
+RATIO = 5  # dt = tc/5 with exactRestitution on: the recommended setting (the defaults)
 # name: (ranks, drum.in -var overrides)
 BASE = {"balance": "off", "wall": "surface", "skin": 0.5, "model": "viscoelastic", "sort": 1000}  # explicit: defaults change
 VARIANTS = {
@@ -46,6 +51,9 @@ VARIANTS = {
     "stock": (2, {**BASE, "balance": "on", "model": "hooke"}),
     "fast": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.3}),
     "stock fast": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.3, "model": "hooke"}),
+    "fast 0.2": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.2}),
+    "fast 0.1": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.1}),
+    "fast 0.05": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.05}),
     "sort 100": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.3, "sort": 100}),
     "sort 25": (2, {**BASE, "balance": "on", "wall": "cylinder", "skin": 0.3, "sort": 25}),
     "1 rank": (1, BASE),
@@ -75,6 +83,9 @@ class Together:
 def parser():
     p = harness.options(__doc__, out=common.RESULTS, rounds=3, restart=None)
     p.add_argument("--time", type=float, default=0.02, help="simulated s per run (default: 0.02)")
+    p.add_argument("--ratio", type=float, default=RATIO, help="dt = tc / RATIO (default: %(default)s)")
+    p.add_argument("--exact", choices=("on", "off"), default="on",
+                   help="exactRestitution (default: %(default)s; off: the nominal law, as the timestep study runs it)")
     p.add_argument("--period", type=float, default=0.024, help="axial period of the state [m] (default: 0.024)")
     p.add_argument("--variants", default=",".join(VARIANTS), help="which variants (default: all)")
     p.add_argument("--stem", default="full_scene",
@@ -83,8 +94,10 @@ def parser():
 
 
 def run(args):
-    dt = common.dt_of(RATIO)
-    stock = common.stock_file(harness.post("full_scene/stock.in"), exact_dt=dt)
+    if not args.ratio > 0:
+        raise SystemExit(f"full_scene: --ratio {args.ratio:g}: dt = tc / ratio needs ratio > 0")
+    dt = common.dt_of(args.ratio)
+    stock = common.stock_file(harness.post("full_scene/stock.in"), exact_dt=dt if args.exact == "on" else None)
     names = [v.strip() for v in args.variants.split(",")]
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
@@ -100,7 +113,7 @@ def run(args):
 
     def one(tag, ranks, extra):
         return harness.drum(harness.post(tag + ".log"), np=ranks, period=args.period, rpm=common.RPM, dt=dt,
-                            exact="on", time=args.time, dumpdt=1000, start="restart", restart=restart,
+                            exact=args.exact, time=args.time, dumpdt=1000, start="restart", restart=restart,
                             stock=stock, name=tag, **extra)
 
     def variant(name):
@@ -126,7 +139,7 @@ def run(args):
     harness.write_csv(Path(args.out) / f"{args.stem}.csv", rows)
     harness.write_json(Path(args.out) / f"{args.stem}.json", {
         "restart": str(args.restart), "time_s": args.time, "rounds": args.rounds, "period_m": args.period,
-        "dt_s": dt, "tc_over_dt": RATIO, "cores": harness.machine()["cores"], "date": common.today(),
+        "dt_s": dt, "tc_over_dt": args.ratio, "exact": args.exact, "cores": harness.machine()["cores"], "date": common.today(),
         "variants": args.variants, "stem": args.stem})
 
 
@@ -161,7 +174,7 @@ def render(res, m, rows):
     ran = m.get("variants") or ",".join(dict.fromkeys(r["variant"] for r in rows))  # older results: from the rows
     return (
         f"The thesis scene ({1e3 * m['period_m']:.0f} mm period, {beads:,} beads) from `{m['restart']}` at "
-        f"{common.RPM} rpm, dt = tc/{m['tc_over_dt']:g} with exactRestitution on, {m['time_s']:g} s per run,\n"
+        f"{common.RPM} rpm, dt = tc/{m['tc_over_dt']:g} with exactRestitution {m.get('exact', 'on')}, {m['time_s']:g} s per run,\n"
         f"{m['rounds']} interleaved rounds, {m['date']} ({m['cores']} cores). Speed-up: the median over rounds of "
         "t(mesh) / t(variant); parallel efficiency: t(1 rank, same work) / (2 t(variant)), per round: `1 rank` "
         "for mesh and balance, `1 rank fast` for fast.\n\n"
@@ -174,6 +187,8 @@ def render(res, m, rows):
                                    ("neighbour builds", "builds", None)])
         + "\n" + verdict(table, rows)
         + common.sh(common.command("full_scene.py", restart=m["restart"], time=m["time_s"], rounds=m["rounds"],
+                                   ratio=None if m["tc_over_dt"] == RATIO else f"{m['tc_over_dt']:g}",
+                                   exact=None if m.get("exact", "on") == "on" else m["exact"],
                                    variants=None if ran == ",".join(VARIANTS) else ran,
                                    stem=None if m.get("stem", "full_scene") == "full_scene" else m["stem"])))
 
@@ -205,7 +220,33 @@ def section(res):
                  "sorts at the first neighbour build after that many steps, here builds come every 18 steps or "
                  "so), from the main job's shipped state:\n\n"
                  + common.section_of("full_scene_sort", "full_scene")(render)(res))
+    if res.has("full_scene_tc81.csv", "full_scene_tc81.json"):
+        text += ("\nNeighbour skin at the thesis' tc/81 with the nominal law (the timestep study's settings), from "
+                 "the main job's shipped state: a bead moves 16 times less per step than at tc/5, so a thinner skin "
+                 "(fewer pairs checked every step) costs fewer extra neighbour-list builds. A screen of skins:\n\n"
+                 + common.section_of("full_scene_tc81", "full_scene")(render)(res))
+    if res.has("full_scene_tc81_confirm.csv", "full_scene_tc81_confirm.json"):
+        text += ("\nThe screen's best skin against the study's, more rounds (what `tools/drum/campaign.sh` runs "
+                 "tc/81 with):\n\n" + common.section_of("full_scene_tc81_confirm", "full_scene")(render)(res))
+        text += rounds_together(res, ("full_scene_tc81", "full_scene_tc81_confirm"), "fast", "fast 0.1")
     return text
+
+
+def rounds_together(res, stems, a, b):
+    """Every round of several runs of the same pair of variants at once: in how many is `b` faster
+    than `a`, and the two-sided sign-test chance of so lopsided a count if neither were (a machine
+    too noisy for every round to agree can still show a consistent gap over many rounds)."""
+    ratios = []
+    for stem in stems:
+        rows = res.csv(stem + ".csv")
+        loops = {n: [r["loop_s"] for r in rows if r["variant"] == n] for n in (a, b)}
+        ratios += [x / y for x, y in zip(loops[a], loops[b])]
+    faster = sum(r > 1 for r in ratios)
+    chance = min(1.0, 2 * stats.binom.sf(max(faster, len(ratios) - faster) - 1, len(ratios), 0.5))
+    return (f"Over all {len(ratios)} rounds of the two runs above, `{b}` is faster than `{a}` in {faster} "
+            f"(speed-up t({a}) / t({b}): median {harness.median(ratios):.3f}, per round "
+            f"{min(ratios):.2f}–{max(ratios):.2f}); a count this lopsided comes by chance with probability "
+            f"{chance:.2g} (two-sided sign test) if neither is faster.\n\n")
 
 
 def read_rounds(lo, hi, above, below):
@@ -242,7 +283,7 @@ def verdict(table, rows):
         text += (f"Parallel efficiency of `fast`, t(1 rank fast) / (2 t(fast)): median {harness.median(per_round):.2f} "
                  f"over {len(per_round)} rounds, per round {lo:.2f}–{hi:.2f}"
                  f"{'; every round below 0.95' if hi < 0.95 else '; every round at 0.95 or above' if lo >= 0.95 else ''}.\n")
-    for name in ("sort 100", "sort 25"):
+    for name in ("fast 0.2", "fast 0.1", "fast 0.05", "sort 100", "sort 25"):
         if loops.get("fast") and loops.get(name):
             ratios = [a / b for a, b in zip(loops["fast"], loops[name])]
             lo, hi = harness.spread(ratios)

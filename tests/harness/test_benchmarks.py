@@ -129,6 +129,25 @@ class Summaries(unittest.TestCase):
         # the pair never counts as the fastest two-rank variant
         self.assertIn("Fastest of ours by median rate: fast,", reading([40, 40, 40], [64, 70, 60]))
 
+    def test_rounds_of_several_runs_together(self):
+        class Results:  # two result files of the same pair of variants
+            def __init__(self, runs):
+                self.runs = runs
+
+            def csv(self, name):
+                return [{"variant": v, "loop_s": t} for pairs in self.runs[name.removesuffix(".csv")]
+                        for v, t in zip(("fast", "fast 0.1"), pairs)]
+        # 8 rounds of 9 faster: P(8 or more either way of 9 fair coins) = 2 * 10 / 512
+        res = Results({"one": [(30, 27), (36, 32), (29, 26)],
+                       "two": [(35, 28), (31, 29), (33, 27), (33, 22), (29, 33), (42, 29)]})
+        text = full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1")
+        self.assertIn("`fast 0.1` is faster than `fast` in 8 ", text)
+        self.assertIn(f"probability {2 * 10 / 512:.2g} (two-sided", text)
+        # half and half: no sign of a gap
+        res = Results({"one": [(30, 27), (30, 33)], "two": []})
+        self.assertIn("in 1 (", full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1"))
+        self.assertIn("probability 1 (", full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1"))
+
     def test_parallel_efficiency_per_round(self):
         def reading(two, one):
             return verdict_of([[("fast", 2, a, 65344), ("1 rank fast", 1, b, 65344)] for a, b in zip(two, one)])

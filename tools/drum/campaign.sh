@@ -142,17 +142,19 @@ if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 bound=(--name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60)
 steady "${bound[@]}" --speeds 7,14,21,28,35
 # one timestep against the chain's tc/5 (exactRestitution) at 21 rpm, from its 21 rpm state
+# (skin: the neighbour skin in bead diameters; a thinner one pays at a small timestep and changes
+# nothing but the order of floating-point sums: benchmarks/README.md, section 5, tc/81)
 timestep() {
-  local step=$1 label=$2 segment=$3
+  local step=$1 label=$2 segment=$3 skin=$4
   steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    --var dt "$step" --var exact off --segment "$segment" --cap 20 --min-batches 5 --confidence 0.95
+    --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20 --min-batches 5 --confidence 0.95
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/dt_$label.csv" --rpm 21 --timesteps \
       --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
     save "Drum: 21 rpm at tc/5 against $label at thesis scale" "docs/drum/timestep_21rpm_$label.md"
   fi
 }
-timestep 5e-6 tc20 0.5
+timestep 5e-6 tc20 0.5 0.3
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
   steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     "${yade[@]}" --segment 2 --cap 40
@@ -167,7 +169,7 @@ if [[ ${#now[@]} -eq 0 ]]; then
   done
   save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
 fi
-timestep 1.23e-6 tc81 0.25
+timestep 1.23e-6 tc81 0.25 0.1
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
