@@ -129,24 +129,21 @@ class Summaries(unittest.TestCase):
         # the pair never counts as the fastest two-rank variant
         self.assertIn("Fastest of ours by median rate: fast,", reading([40, 40, 40], [64, 70, 60]))
 
-    def test_rounds_of_several_runs_together(self):
-        class Results:  # two result files of the same pair of variants
-            def __init__(self, runs):
-                self.runs = runs
-
-            def csv(self, name):
-                return [{"variant": v, "loop_s": t} for pairs in self.runs[name.removesuffix(".csv")]
-                        for v, t in zip(("fast", "fast 0.1"), pairs)]
+    def test_sign_test(self):
+        def rows(pairs):
+            return [{"variant": v, "loop_s": t} for pair in pairs for v, t in zip(("fast", "fast 0.1"), pair)]
         # 8 rounds of 9 faster: P(8 or more either way of 9 fair coins) = 2 * 10 / 512
-        res = Results({"one": [(30, 27), (36, 32), (29, 26)],
-                       "two": [(35, 28), (31, 29), (33, 27), (33, 22), (29, 33), (42, 29)]})
-        text = full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1")
-        self.assertIn("`fast 0.1` is faster than `fast` in 8 ", text)
-        self.assertIn(f"probability {2 * 10 / 512:.2g} (two-sided", text)
-        # half and half: no sign of a gap
-        res = Results({"one": [(30, 27), (30, 33)], "two": []})
-        self.assertIn("in 1 (", full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1"))
-        self.assertIn("probability 1 (", full_scene.rounds_together(res, ("one", "two"), "fast", "fast 0.1"))
+        text = full_scene.sign_test(rows([(30, 27), (36, 32), (29, 26), (35, 28), (31, 29), (33, 27), (33, 22),
+                                          (29, 33), (42, 29)]), "fast", "fast 0.1")
+        self.assertIn(f"faster than `fast` in 8 of 9 rounds; a count this lopsided comes by chance with probability "
+                      f"{2 * 10 / 512:.2g} (two-sided) if neither is faster: a gap.", text)
+        # 5 of 6: 2 * 7 / 64 = 0.22, no gap established
+        text = full_scene.sign_test(rows([(30, 27), (36, 32), (29, 26), (35, 28), (31, 29), (29, 33)]),
+                                    "fast", "fast 0.1")
+        self.assertIn(f"in 5 of 6 rounds; a count this lopsided comes by chance with probability {2 * 7 / 64:.2g}", text)
+        self.assertIn("no gap established at this noise", text)
+        # slower in most rounds: lopsided the other way counts alike
+        self.assertIn("in 1 of 6 rounds", full_scene.sign_test(rows([(27, 30)] * 5 + [(30, 27)]), "fast", "fast 0.1"))
 
     def test_parallel_efficiency_per_round(self):
         def reading(two, one):

@@ -39,7 +39,7 @@
 #    freedom, and with 3 batches (2 degrees of freedom) it would catch only differences of 17
 #    combined standard errors, with 5 a side 6.9. Each against the chain's tc/5 with
 #    exactRestitution (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
-# 6. study_yade goes on to 28 and 35 rpm (about 4 hours), each steady YADE speed set against the
+# 6. study_yade goes on to 28 and 35 rpm (about 5 hours), each steady YADE speed set against the
 #    thesis' table at that speed (histories.py --conventions: docs/drum/conventions_<rpm>rpm.md):
 #    the thesis' head drops at 28 rpm and rises from 35, the chain's (thesis' table) rises to 28
 #    and drops by 35; do YADE's conventions, whose bed lets go during 26-28 rpm in the ramp, give
@@ -142,8 +142,9 @@ if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 bound=(--name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60)
 steady "${bound[@]}" --speeds 7,14,21,28,35
 # one timestep against the chain's tc/5 (exactRestitution) at 21 rpm, from its 21 rpm state
-# (skin: the neighbour skin in bead diameters; a thinner one pays at a small timestep and changes
-# nothing but the order of floating-point sums: benchmarks/README.md, section 5, tc/81)
+# (skin: the neighbour skin in bead diameters; a thinner one changes only round-off, never which
+# contacts are computed, and has fewer pairs to check where beads move little per step:
+# benchmarks/README.md, "Neighbour skin at the thesis' tc/81")
 timestep() {
   local step=$1 label=$2 segment=$3 skin=$4
   steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
