@@ -8,7 +8,7 @@ sudo=""
 [ "$(id -u)" -ne 0 ] && sudo=sudo
 $sudo apt-get update
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends \
-  build-essential cmake liggghts libliggghts-dev openmpi-bin libopenmpi-dev \
+  build-essential cmake liggghts libliggghts-dev openmpi-bin libopenmpi-dev shellcheck \
   libeigen3-dev libboost-dev libcli11-dev libgtest-dev libbenchmark-dev valgrind gnuplot-nox \
   python3 python3-matplotlib python3-numpy python3-scipy \
   paraview paraview-dev python3-paraview xvfb xauth
