@@ -2,6 +2,7 @@
 when a speed stops, targets. No LIGGGHTS runs (the end-to-end test runs a tiny drum)."""
 
 import gzip
+import math
 import sys
 import tempfile
 import unittest
@@ -94,6 +95,32 @@ class NextLength(unittest.TestCase):
     def test_never_longer_than_a_segment(self):
         # 7 rpm: a revolution is 8.6 s
         self.assertEqual(steady.next_length(self.row(True, 3.0), 20.0, 7, 2.0, 5, self.SNAP), 2.0)
+
+
+class TimeLeft(unittest.TestCase):
+    SNAP = NextLength.SNAP
+    row = NextLength.row
+
+    def test_unsettled(self):
+        still = steady.still_needed(self.row(False, 0), 4.0, 35, 5, self.SNAP)
+        self.assertTrue(math.isnan(still))
+        self.assertEqual(steady.progress_note(still, [], 2e-5), "not settled yet")
+
+    def test_seconds_to_the_minimum_of_batches(self):
+        # settled at 1.3 s, at 9.0 s: 155 snapshots of the 5 * 34 needed
+        still = steady.still_needed(self.row(True, 1.3), 9.0, 35, 5, self.SNAP)
+        self.assertAlmostEqual(still, 15 * self.SNAP, places=9)
+        # as far as next_length goes when a segment is long enough
+        self.assertAlmostEqual(still, steady.next_length(self.row(True, 1.3), 9.0, 35, 2.0, 5, self.SNAP), places=9)
+        self.assertEqual(steady.still_needed(self.row(True, 1.3), 1.3 + 5 * 34 * self.SNAP, 35, 5, self.SNAP), 0.0)
+        self.assertIn("error targets decide", steady.progress_note(0.0, [], 2e-5))
+
+    def test_wall_time_at_the_rate_so_far(self):
+        # two segments of 100,000 steps at dt 5e-6 (0.5 s each) in 780 s: 26 min per simulated second
+        loops = [{"steps": 100000, "loop_s": 780.0}, {"steps": 100000, "loop_s": 780.0}]
+        note = steady.progress_note(3.0, loops, 5e-6)
+        self.assertIn("at least 3 s simulated more", note)
+        self.assertIn("about 78 min at this speed's 26.0 min per simulated second", note)
 
 
 class Options(unittest.TestCase):

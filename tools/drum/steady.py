@@ -122,6 +122,33 @@ def next_length(row, t_end, rpm, segment, min_batches, snapshot):
     return min(segment, max(want * batch - have, 1) * snapshot)
 
 
+def still_needed(row, t_end, rpm, min_batches, snapshot):
+    """Simulated seconds still needed, at least, for min_batches whole batches after the steady
+    start (counted as next_length counts them; the error targets may need more); nan before the
+    series has settled (no steady start yet)."""
+    start = float(row["steady_from_s"])
+    if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
+        return float("nan")
+    batch = max(1, round(revolution(rpm) / snapshot))
+    have = round((t_end - start) / snapshot) + 1
+    return max(min_batches * batch - have, 0) * snapshot
+
+
+def progress_note(still, loops, dt):
+    """What a segment's line says of the time left: the simulated seconds still needed at least and
+    their wall time at this speed's rate so far (its segments' LIGGGHTS loop times)."""
+    if not math.isfinite(still):
+        return "not settled yet"
+    if still <= 0:
+        return "enough batches; the error targets decide"
+    steps = sum(lp["steps"] for lp in loops)
+    if not steps:
+        return f"at least {still:.3g} s simulated more"
+    per_second = sum(lp["loop_s"] for lp in loops) / (steps * dt)
+    return (f"at least {still:.3g} s simulated more for the minimum of batches, about "
+            f"{still * per_second / 60:.0f} min at this speed's {per_second / 60:.1f} min per simulated second")
+
+
 def verdict(row, simulated, cap):
     """After a segment: 'done' (settled, enough batches, errors within target), 'capped' (the
     cap is reached first) or 'continue'."""
@@ -378,8 +405,12 @@ class Study:
                 self.checkpoint(rpm, done)
                 self.last_checkpoint = time.monotonic()
             errors = ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
+            left = ""
+            if outcome == "continue":
+                still = still_needed(row, done["last_step"] * self.dt, rpm, a.min_batches, self.dumpdt)
+                left = f" ({progress_note(still, done['loops'], self.dt)})"
             harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
-                             f"{row['batches']} batches, {errors}: {outcome}")
+                             f"{row['batches']} batches, {errors}: {outcome}{left}")
         return outcome, done, Path(done["state"])
 
     def finish(self, rpm, outcome, done, restart, start_sha):
