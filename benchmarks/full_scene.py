@@ -193,43 +193,46 @@ def render(res, m, rows):
                                    stem=None if m.get("stem", "full_scene") == "full_scene" else m["stem"])))
 
 
+# the sections after the short runs, each shown where its results exist: (stem, what it measures,
+# what follows its table)
+MORE = (
+    ("full_scene_long", "\nLong windows: the study's settings (`fast`) against stock on them and on one rank, "
+                        "runs five times longer:\n\n", None),
+    ("full_scene_steady", "\nSteady flow: the same long windows from the chain's steady 21 rpm state, the bed "
+                          "carried by the drum (the main job's shipped state). The long windows above start from "
+                          "the earlier 3 s state (`inputs/drum_L24_21rpm_3s.restart.gz`), whose bed rides on "
+                          "rolling beads and barely turns: fewer neighbour-list builds, a faster loop than a "
+                          "study's speeds see. This is the rate `tools/drum/report.py` converts a study's "
+                          "particle-steps to minutes with:\n\n", None),
+    ("full_scene_at_once", "\nSeveral runs at once: the study's settings on 2 ranks against two one-rank runs "
+                           "started together, long windows, from the main job's shipped state (`gunzip -c "
+                           "inputs/drum_L24_21rpm.restart.gz > post/full_scene/steady_21rpm.restart`):\n\n", None),
+    ("full_scene_efficiency", "\nParallel efficiency in steady flow, more rounds: the study's settings on 2 ranks "
+                              "and on one, from the main job's shipped state (the 3 rounds above range over "
+                              "0.66–1.22):\n\n", None),
+    ("full_scene_sort", "\nSorting: the study's settings (`fast`, LIGGGHTS' default re-sort every 1000 steps) "
+                        "against re-sorting the beads by position every 100 and 25 steps (neighbours closer in "
+                        "memory; LIGGGHTS sorts at the first neighbour build after that many steps, here builds "
+                        "come every 18 steps or so), from the main job's shipped state:\n\n", None),
+    ("full_scene_tc81", "\nNeighbour skin at the thesis' tc/81 with the nominal law (the timestep study's "
+                        "settings), from the main job's shipped state: a bead moves 16 times less per step than "
+                        "at tc/5, so a thinner skin (fewer pairs checked every step) costs fewer extra "
+                        "neighbour-list builds. A screen of skins:\n\n", None),
+    ("full_scene_tc81_confirm", "\nThe screen's best skin against the study's, more rounds, on their own (the "
+                                "screen chose it, so its rounds are no evidence for it):\n\n",
+     lambda rows: sign_test(rows, "fast", "fast 0.1")),
+)
+
+
 def section(res):
-    """Every lever in short runs; then, where measured, the study's settings in long windows."""
+    """Every lever in short runs; then, where measured, the study's settings in long windows and
+    the other sections of MORE."""
     text = common.section_of("full_scene", "full_scene")(render)(res)
-    if res.has("full_scene_long.csv", "full_scene_long.json"):
-        text += ("\nLong windows: the study's settings (`fast`) against stock on them and on one rank, "
-                 "runs five times longer:\n\n" + common.section_of("full_scene_long", "full_scene")(render)(res))
-    if res.has("full_scene_steady.csv", "full_scene_steady.json"):
-        text += ("\nSteady flow: the same long windows from the chain's steady 21 rpm state, the bed carried by "
-                 "the drum (the main job's shipped state). The long windows above start from the earlier 3 s "
-                 "state (`inputs/drum_L24_21rpm_3s.restart.gz`), whose bed rides on rolling beads and barely "
-                 "turns: fewer neighbour-list builds, a faster loop than a study's speeds see. This is the rate "
-                 "`tools/drum/report.py` converts a study's particle-steps to minutes with:\n\n"
-                 + common.section_of("full_scene_steady", "full_scene")(render)(res))
-    if res.has("full_scene_at_once.csv", "full_scene_at_once.json"):
-        text += ("\nSeveral runs at once: the study's settings on 2 ranks against two one-rank runs started "
-                 "together, long windows, from the main job's shipped state (`gunzip -c "
-                 "inputs/drum_L24_21rpm.restart.gz > post/full_scene/steady_21rpm.restart`):\n\n" + common.section_of("full_scene_at_once", "full_scene")(render)(res))
-    if res.has("full_scene_efficiency.csv", "full_scene_efficiency.json"):
-        text += ("\nParallel efficiency in steady flow, more rounds: the study's settings on 2 ranks and on one, "
-                 "from the main job's shipped state (the 3 rounds above range over 0.66–1.22):\n\n"
-                 + common.section_of("full_scene_efficiency", "full_scene")(render)(res))
-    if res.has("full_scene_sort.csv", "full_scene_sort.json"):
-        text += ("\nSorting: the study's settings (`fast`, LIGGGHTS' default re-sort every 1000 steps) against "
-                 "re-sorting the beads by position every 100 and 25 steps (neighbours closer in memory; LIGGGHTS "
-                 "sorts at the first neighbour build after that many steps, here builds come every 18 steps or "
-                 "so), from the main job's shipped state:\n\n"
-                 + common.section_of("full_scene_sort", "full_scene")(render)(res))
-    if res.has("full_scene_tc81.csv", "full_scene_tc81.json"):
-        text += ("\nNeighbour skin at the thesis' tc/81 with the nominal law (the timestep study's settings), from "
-                 "the main job's shipped state: a bead moves 16 times less per step than at tc/5, so a thinner skin "
-                 "(fewer pairs checked every step) costs fewer extra neighbour-list builds. A screen of skins:\n\n"
-                 + common.section_of("full_scene_tc81", "full_scene")(render)(res))
-    if res.has("full_scene_tc81_confirm.csv", "full_scene_tc81_confirm.json"):
-        text += ("\nThe screen's best skin against the study's, more rounds, on their own (the screen chose it, so "
-                 "its rounds are no evidence for it):\n\n"
-                 + common.section_of("full_scene_tc81_confirm", "full_scene")(render)(res)
-                 + sign_test(res.csv("full_scene_tc81_confirm.csv"), "fast", "fast 0.1"))
+    for stem, intro, after in MORE:
+        if res.has(stem + ".csv", stem + ".json"):
+            text += intro + common.section_of(stem, "full_scene")(render)(res)
+            if after:
+                text += after(res.csv(stem + ".csv"))
     return text
 
 

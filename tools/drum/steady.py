@@ -107,30 +107,34 @@ def plan(speeds, committed, settings, force=False, first_state=None):
     return out
 
 
-def next_length(row, t_end, rpm, segment, min_batches, snapshot):
-    """Simulated seconds of the next segment: `segment`, or less where the minimum of batches can
-    be met sooner. `drum_metrics steady` counts batches of round(revolution / snapshot) snapshots
-    back from the end of the series (`t_end`), from the steady start on; once settled, the
-    segment ends where min_batches of them fit, then one more (the earliest a verdict can be
-    'done'), and is at least one snapshot. `row`: the last `drum_metrics steady` row."""
+def counted(row, t_end, rpm, snapshot):
+    """(snapshots per batch, snapshots from the steady start to `t_end`) as `drum_metrics steady`
+    counts them: batches of round(revolution / snapshot) snapshots back from the end of the
+    series; None before the series has settled (no steady start yet). `row`: the last
+    `drum_metrics steady` row."""
     start = float(row["steady_from_s"])
     if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
+        return None
+    return max(1, round(revolution(rpm) / snapshot)), round((t_end - start) / snapshot) + 1
+
+
+def next_length(row, t_end, rpm, segment, min_batches, snapshot):
+    """Simulated seconds of the next segment: `segment`, or less where the minimum of batches can
+    be met sooner: once settled, the segment ends where min_batches batches (`counted`) fit, then
+    one more (the earliest a verdict can be 'done'), and is at least one snapshot."""
+    if (count := counted(row, t_end, rpm, snapshot)) is None:
         return segment
-    batch = max(1, round(revolution(rpm) / snapshot))
-    have = round((t_end - start) / snapshot) + 1  # snapshots from the steady start on
+    batch, have = count
     want = max(min_batches, have // batch + 1)
     return min(segment, max(want * batch - have, 1) * snapshot)
 
 
 def still_needed(row, t_end, rpm, min_batches, snapshot):
     """Simulated seconds still needed, at least, for min_batches whole batches after the steady
-    start (counted as next_length counts them; the error targets may need more); nan before the
-    series has settled (no steady start yet)."""
-    start = float(row["steady_from_s"])
-    if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
+    start (`counted`; the error targets may need more); nan before the series has settled."""
+    if (count := counted(row, t_end, rpm, snapshot)) is None:
         return float("nan")
-    batch = max(1, round(revolution(rpm) / snapshot))
-    have = round((t_end - start) / snapshot) + 1
+    batch, have = count
     return max(min_batches * batch - have, 0) * snapshot
 
 
