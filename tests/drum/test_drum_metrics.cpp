@@ -718,6 +718,46 @@ TEST(DrumSteadyState, StandardErrorUpperBoundCoversAtItsConfidence)
     EXPECT_NEAR(plain, std::exp(-1.0), 3.0 * std::sqrt(0.37 * 0.63 / replicas));
 }
 
+// The stop rule checks again and again as batches come in and stops at the
+// first check the bound passes, so its chance of stopping with the true SE
+// above the target exceeds one check's 5 %. Checked after every batch from the
+// minimum on (the worst case: the driver checks after each segment, a
+// revolution or more), on N(0, sigma) batch means whose true SE at the minimum
+// is 1.3 times the target (the worst ratio of 1.1-4 in a scan: 8.3 % with a
+// minimum of 3 batches, 6.8 % with 5; 2e5 replicas each): the stop is wrong in
+// more than 5 % and at most 10 % (binomial sd 0.002 at 2e4 replicas). A bound
+// computed at the wrong tail (or none) would stop wrongly in over half of them.
+TEST(DrumSteadyState, StopRuleCheckedEveryBatchStopsTooEarlyInAtMostATenth)
+{
+    const double target = 1.0, ratio = 1.3;
+    const int replicas = 20000, cap = 60;
+    for (const int minBatches : {3, 5}) {
+        std::mt19937 rng(11 + minBatches);
+        const double sigma = ratio * target * std::sqrt(double(minBatches));
+        std::normal_distribution<double> normal(0.0, sigma);
+        int stopped = 0, early = 0;
+        for (int r = 0; r < replicas; ++r) {
+            std::vector<double> x;
+            for (int n = 1; n <= cap; ++n) {
+                x.push_back(normal(rng));
+                if (n < minBatches) continue;
+                const drum::Average a = drum::average(x, 0, 1);
+                if (a.stdError * drum::seUpperBound(a.batches, 0.95) <= target) {
+                    ++stopped;
+                    early += sigma / std::sqrt(double(n)) > target;
+                    break;
+                }
+            }
+        }
+        const double rate = double(early) / stopped;
+        std::printf("minimum %d batches, true SE %.1f x the target there: %d of %d stopped, %.4f with the true SE "
+                    "above the target\n", minBatches, ratio, stopped, replicas, rate);
+        EXPECT_GT(stopped, 0.99 * replicas);
+        EXPECT_GT(rate, 0.05);
+        EXPECT_LE(rate, 0.10);
+    }
+}
+
 // A trend of 16 standard deviations over the run under AR(1) noise (phi
 // 0.9) has not settled: MSER searched over the first half only passed 11 of
 // these 40 series; over all but the last tenth, at most 2. And a series that

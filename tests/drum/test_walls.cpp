@@ -230,8 +230,8 @@ TEST_F(DrumBalance, GridStartSplitsAtTheMedianColumn)
 //    snapshots' single precision and the trapezoid rule (both < 1e-6) and the
 //    rest of the tangential spring's oscillation; measured 5e-6. The same
 //    formula with V_wall = Omega (R - r) (LIGGGHTS' primitive wall fed the
-//    drum's Omega uncorrected) lies r / R = 0.67 % away: 67 tolerances,
-//    which the test asserts;
+//    drum's Omega uncorrected) lies r / R = 0.67 % away: 67 tolerances; the
+//    test asserts more than 10;
 //  - against 2/7 Omega (R - r) alone, the pendulum term bounded: the bead
 //    has moved s <= 2/7 V_wall t along the wall, sin(phi) <= s / (R - r), so
 //    |5/7 g Int sin(phi)| <= 5/7 g/(R - r) 2/7 V_wall t^2 / 2 (2.7 % of

@@ -196,6 +196,28 @@ class Histories(unittest.TestCase):
             with self.assertRaises(SystemExit):  # a speed listed twice would count twice
                 histories.main([str(a), str(b), "--rpm", "14,14"])
 
+    def test_the_settings_that_differ_are_named(self):
+        import json
+        import tempfile
+        with tempfile.TemporaryDirectory() as d:
+            def study(name, variables):
+                Path(d, name, "21rpm").mkdir(parents=True)
+                Path(d, name, "21rpm", "run.json").write_text(json.dumps(
+                    {"settings": {"period": "0.024", "variables": variables}}))
+                return str(Path(d, f"{name}.csv"))
+            a = study("a", {"dt": "2e-5", "exact": "on"})
+            b = study("b", {"dt": "1e-5", "exact": "on", "conventions": "yade"})
+            c = study("c", {"exact": "on", "dt": "2e-5"})
+            diff = histories.differing(histories.variables(a, 21.0), histories.variables(b, 21.0))
+            self.assertEqual(diff, [("conventions", "default", "yade"), ("dt", "2e-5", "1e-5")])
+            self.assertIn("dt 2e-5 against 1e-5", histories.settings_sentence(diff))
+            same = histories.differing(histories.variables(a, 21.0), histories.variables(c, 21.0))
+            self.assertEqual(same, [])
+            self.assertIn("same", histories.settings_sentence(same))
+            # a speed without a record: nothing claimed either way
+            self.assertIsNone(histories.differing(histories.variables(a, 14.0), histories.variables(b, 21.0)))
+            self.assertIn("not checked", histories.settings_sentence(None))
+
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)
         b = dict(a)

@@ -382,8 +382,10 @@ class Slip(unittest.TestCase):
             ["rises", "drops", "drops", "rises"], [t1, y1, y1, t1], [], "95%", [31.53, 26.73, 28.03, 31.63])))
         # a history that never lets go: no release line (the spread would be undefined)
         self.assertNotIn("lets go", "\n".join(slip.sets_headline(["rises", "drops"], [t1, y1], [], "95%", [None, 27.0])))
-        # across sets: the pairwise answer, four times; within a set: compared as histories
-        self.assertEqual(text.count("**Hc drops between 27 and 28 rpm with Y"), 4)
+        # across sets: the pairwise answer, four times, not in bold (within-run scatter only: the
+        # per-set headline leads); within a set: compared as histories
+        self.assertEqual(text.count("Pairwise, within-run scatter only: Hc drops between 27 and 28 rpm with Y"), 4)
+        self.assertEqual(text.count("**Hc drops"), 0)
         self.assertIn("T2 minus T1: -0.10 ± 0.46 mm (95%): within the steps' combined error bars (a difference of ", text)
         self.assertIn("Y2 minus Y1: -5.00 ± 0.46 mm (95%): BEYOND the steps' combined error bars", text)
         self.assertNotIn("with neither", text)

@@ -28,6 +28,7 @@ beyond 2 combined standard errors against the count error bars that hold give (`
 """
 
 import argparse
+import json
 import math
 import sys
 from pathlib import Path
@@ -105,7 +106,8 @@ def compare(a, b, metrics, alpha=0.05, power=None):
         critical = critical_of(dof) if math.isfinite(dof) else float("nan")
         t = (va - vb) / se if se > 0 else float("inf") if va != vb else 0.0
         rows.append({"metric": m["label"], "unit": m["unit"], "a": va, "se_a": sa, "b": vb, "se_b": sb,
-                     "difference": va - vb, "combined_se": se, "t": t, "dof": dof, "critical_t": critical,
+                     "difference": va - vb, "combined_se": se, "t": t, "dof": dof,
+                     "welch_dof": welch_dof(sa, a["batches"], sb, b["batches"]), "critical_t": critical,
                      "agree": abs(t) <= critical})
         if power is not None:
             rows[-1]["detectable"] = detectable(sa, a["batches"], sb, b["batches"], critical_of, power)
@@ -134,14 +136,45 @@ def row_at(table, rpm):
     return rows[0]
 
 
-def beyond(rows, t=2.0):
+def variables(table, rpm):
+    """The `-var` settings a study ran this speed with (steady.py's run.json beside its table:
+    docs/drum/NAME/<rpm>rpm/run.json), with the period; None where there is no record."""
+    record = Path(table).with_suffix("") / f"{rpm:g}rpm" / "run.json"
+    if not record.exists():
+        return None
+    settings = json.loads(record.read_text()).get("settings", {})
+    return {"period": settings.get("period"), **settings.get("variables", {})}
+
+
+def differing(a, b):
+    """The settings that differ between two studies' `variables`: [(name, in a, in b)], an unset one
+    as "default"; None where either has no record."""
+    if a is None or b is None:
+        return None
+    names = sorted(set(a) | set(b))
+    return [(k, a.get(k, "default"), b.get(k, "default")) for k in names if a.get(k) != b.get(k)]
+
+
+def settings_sentence(diff):
+    """What else separates A and B besides what the comparison is about (a difference found is
+    theirs together)."""
+    if diff is None:
+        return "(No run record of A's or B's settings beside its table: what else differs is not checked.)"
+    if not diff:
+        return "A and B ran with the same `-var` settings."
+    listed = ", ".join(f"{k} {va} against {vb}" for k, va, vb in diff)
+    return (f"A and B differ in these `-var` settings: {listed}. A difference found is theirs together, "
+            "not one setting's alone.")
+
+
+def beyond(rows, t=2.0, dof="dof"):
     """How many rows lie beyond |t| = t, and each row's chance of it if the error bars hold: P(|T| > t)
     at the row's degrees of freedom (the smaller side's), at least the check's own chance whatever
     the ratio of the two errors (3 batches a side, equal errors: 0.18 against 0.11), so the count
     leans towards agreeing. It grows with every speed compared, so against error bars a little small
     everywhere it sees more than each speed's Bonferroni check, at fewer false alarms (test_histories)."""
-    usable = [r for r in rows if math.isfinite(r["dof"])]
-    return sum(abs(r["t"]) > t for r in usable), [2.0 * stats.t.sf(t, r["dof"]) for r in usable]
+    usable = [r for r in rows if math.isfinite(r[dof])]
+    return sum(abs(r["t"]) > t for r in usable), [2.0 * stats.t.sf(t, r[dof]) for r in usable]
 
 
 def at_least(k, probabilities):
@@ -165,6 +198,12 @@ def pooled(rows, t=2.0):
             f"guide, not a test at a stated rate).")
     if tail < 0.05:
         text += " More rows lie beyond it than chance gives: the error bars may be somewhat small."
+    if all("welch_dof" in r for r in rows):
+        # the same count at Welch-Satterthwaite's degrees of freedom: nearer the true chance where the
+        # two sides' errors are alike, too low where one is several times the other (module note)
+        k, welch = beyond(rows, t, "welch_dof")
+        text += (f" At Welch-Satterthwaite's degrees of freedom instead, {sum(welch):.1f} on average, and {k} or "
+                 f"more with probability {at_least(k, welch):.2g}.")
     return text
 
 
@@ -213,7 +252,8 @@ def main(argv=None):
                      f"B: `{args.b}` ({b['batches']:g} batches, {b['revolutions']:.1f} revolutions); two-sided "
                      f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics). \"caught at 80 %\": the "
                      f"true difference this check would catch with 80 % probability at these degrees of freedom (a "
-                     f"smaller one may pass unseen).\n\n{table}\n{verdict(here, kind)}\n")
+                     f"smaller one may pass unseen).\n\n{table}\n{verdict(here, kind)} "
+                     f"{settings_sentence(differing(variables(args.a, rpm), variables(args.b, rpm)))}\n")
         every_row += rows
         agree = agree and here
     if len(args.rpm) > 1:

@@ -475,9 +475,12 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
             summary = "Hc drops between 27 and 28 rpm with both" + (", by different amounts" if differ else "")
         else:
             summary = "Hc drops between 27 and 28 rpm with neither" + ("; the two steps differ" if differ else "")
-        lines += [f"**{summary}** ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
+        # with histories of one set, a pair of runs is no evidence between sets (its error bar holds
+        # only the scatter within each run): plain text, after the per-set headline
+        lead = (f"Pairwise, within-run scatter only: {summary}" if grouped else f"**{summary}**")
+        lines += [f"{lead} ({lb} minus {la}: {difference * 1e3:+.2f} ± {critical * 1e3:.2f} mm, {level}, "
                   "Welch on the four speeds' batch errors, Satterthwaite's degrees of freedom"
-                  + ("; within-run scatter only, see the set's histories above" if grouped else "") + ").", ""]
+                  + ("; see the set's histories above" if grouped else "") + ").", ""]
     if same:
         lines += ["Two histories of one set of settings, their 27 → 28 rpm steps compared (the same contrast): "
                   + "; ".join(same) + ". A step's error bar is the scatter within its two windows; it does not "
