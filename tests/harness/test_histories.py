@@ -28,6 +28,8 @@ class Histories(unittest.TestCase):
     def test_verdict_names_what_differs(self):
         self.assertIn("DISAGREE", histories.verdict(False))
         self.assertIn("DIFFER", histories.verdict(False, "timesteps"))
+        self.assertIn("settings DIFFER", histories.verdict(False, "settings"))
+        self.assertIn("settings agree", histories.verdict(True, "settings"))
         self.assertIn("agree", histories.verdict(True, "timesteps"))
         self.assertIn("conventions DIFFER", histories.verdict(False, "conventions"))
 

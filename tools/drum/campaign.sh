@@ -45,8 +45,14 @@
 #    and drops by 35; do YADE's conventions, whose bed lets go during 26-28 rpm in the ramp, give
 #    the thesis' drop? Before tc/81, which costs 16 times tc/5 per simulated second (about 15 s
 #    simulated: a day or more of 2 cores).
-# 7. tc/81 as in 5.
-# 8. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
+# 7. The drum's wall at 21 rpm, steady, from the chain's 21 rpm state under the thesis' table with
+#    the same rule as 5: the rotating mesh (`wall moving`: facets that keep a contact's history) and
+#    the static mesh with a surface velocity (`wall surface`: a bead's tangential spring restarts at
+#    every facet it crosses), each against the chain's primitive cylinder (histories.py --settings:
+#    docs/drum/walls_21rpm_<wall>.md). The slip question is one of friction at the drum, where the
+#    wall's representation could matter; about 4 hours each (the mesh costs 1.27 times the cylinder).
+# 8. tc/81 as in 5.
+# 9. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
 #    each speed (each starts from a state study_thesis did not pass through), set against
 #    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
 set -euo pipefail
@@ -170,6 +176,19 @@ if [[ ${#now[@]} -eq 0 ]]; then
   done
   save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
 fi
+# the drum's wall against the chain's primitive cylinder at 21 rpm (a later --var wall overrides steady()'s)
+wall() {
+  local kind=$1
+  steady --name "walls_$kind" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+    "${thesis[@]}" --var wall "$kind" --segment 2 --cap 40 --min-batches 5 --confidence 0.95
+  if [[ ${#now[@]} -eq 0 ]]; then
+    "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/walls_$kind.csv" --rpm 21 --settings \
+      --out "docs/drum/walls_21rpm_$kind.md" || true  # exits 1 where they differ: the answer, in the file
+    save "Drum: 21 rpm steady on the $kind wall against the primitive cylinder" "docs/drum/walls_21rpm_$kind.md"
+  fi
+}
+wall moving
+wall surface
 timestep 1.23e-6 tc81 0.25 0.1
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then

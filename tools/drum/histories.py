@@ -116,11 +116,15 @@ def compare(a, b, metrics, alpha=0.05, power=None):
 
 def verdict(agree, kind="histories"):
     """The sentence for the check's outcome: two histories of one state (a difference is a failure
-    of the error bars), or one state at two timesteps, or under two sets of conventions (a
+    of the error bars), or one state at two timesteps, under two sets of conventions or two other settings (a
     difference is the change's effect)."""
     if kind == "timesteps":
         return ("The two timesteps agree within the error bars." if agree else
                 "The two timesteps DIFFER beyond the error bars: the timestep changes the result.")
+    if kind == "settings":
+        return ("The two settings agree within the error bars." if agree else
+                "The two settings DIFFER beyond the error bars (rows marked **no**): the change of settings "
+                "changes the result there.")
     if kind == "conventions":
         return ("The two sets of conventions agree within the error bars." if agree else
                 "The two sets of conventions DIFFER beyond the error bars (rows marked **no**): they change "
@@ -234,8 +238,12 @@ def main(argv=None):
     kind.add_argument("--conventions", action="store_true",
                       help="A and B are one speed under two sets of conventions (material table, mixing rules): "
                            "a difference is the conventions' effect")
+    kind.add_argument("--settings", action="store_true",
+                      help="A and B are one speed under two other settings (e.g. the drum's wall, named in the "
+                           "output): a difference is the settings' effect")
     args = p.parse_args(argv)
-    kind = "timesteps" if args.timesteps else "conventions" if args.conventions else "histories"
+    kind = ("timesteps" if args.timesteps else "conventions" if args.conventions else
+            "settings" if args.settings else "histories")
     texts, every_row, agree = [], [], True
     for rpm in args.rpm:
         a, b = row_at(args.a, rpm), row_at(args.b, rpm)
