@@ -132,5 +132,54 @@ class InterruptedStudy(unittest.TestCase):
                          (self.tmp / name.rsplit("_", 1)[1] / name / "21rpm" / "series_metrics.csv").read_text())
 
 
+# two chained speeds, each capped after two segments: 28 rpm starts from 21 rpm's end state
+CHAIN = ["--speeds", "21,28", "--period", "0.006", "--var", "fill", "0.05", "--var", "dumpdt", "0.005",
+         "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.04"]
+
+
+class InterruptedChain(unittest.TestCase):
+    """A chain interrupted in its second speed and resumed: the finished first speed is taken from
+    docs/ (not run again, not read from post/), the second goes on from its last recorded segment,
+    and both speeds' series and averages equal an uninterrupted chain's."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_chain_e2e_"))
+        cls.names = [f"e2e_chain_{os.getpid()}_{k}" for k in ("whole", "cut")]
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+        for n in cls.names:
+            shutil.rmtree(REPO / "post" / n, ignore_errors=True)
+
+    def run_chain(self, name, docs):
+        return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *CHAIN]
+
+    def test_a_chain_resumed_in_its_second_speed(self):
+        whole, cut = self.names
+        subprocess.run(self.run_chain(whole, self.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
+        recorded = kill_after_first_segment(self.run_chain(cut, self.tmp / "cut"),
+                                            REPO / "post" / cut / "28rpm_progress.json")
+        self.assertEqual(recorded, 1, "killed after 28 rpm's last segment: nothing left to resume")
+        self.assertTrue((self.tmp / "cut" / cut / "21rpm" / "state.restart.gz").exists())
+        for f in (REPO / "post" / cut).glob("21rpm*"):  # 21 rpm must come from docs/ now
+            f.unlink()
+        resumed = subprocess.run(self.run_chain(cut, self.tmp / "cut"), cwd=REPO, capture_output=True, text=True)
+        said = resumed.stdout + resumed.stderr
+        self.assertEqual(resumed.returncode, 0, said[-3000:])
+        self.assertIn("plan: 21 rpm: committed", said)
+        self.assertNotIn("21 rpm, segment", said)
+        self.assertIn("28 rpm, segment 2:", said)
+        self.assertNotIn("28 rpm, segment 1:", said)
+        for rpm in (21, 28):
+            for f in ("series_metrics.csv", "series_average.csv"):
+                self.assertEqual((self.tmp / "whole" / whole / f"{rpm}rpm" / f).read_text(),
+                                 (self.tmp / "cut" / cut / f"{rpm}rpm" / f).read_text(), f"{rpm} rpm {f}")
+        table = [(self.tmp / d / f"{n}.csv").read_text().splitlines() for d, n in (("whole", whole), ("cut", cut))]
+        self.assertEqual(len(table[0]), 3)  # a header and a row per speed
+        self.assertEqual(len(table[1]), 3)
+
+
 if __name__ == "__main__":
     unittest.main()
