@@ -87,8 +87,9 @@ def projection(best, thesis_beads, span):
     return text + (
         f"\nThe thesis: {THESIS_DAYS_PER_SPEED} days per speed on {THESIS_CORES} cores with YADE 1.12 at tc/{thesis_ratio}, "
         f"about {round(THESIS_SPEEDS * THESIS_DAYS_PER_SPEED, -2):.0f} days for the sweep; here "
-        f"{THESIS_DAYS_PER_SPEED * 86400 / rows[0]['speed']:.1f}× less wall time per speed, like for like (the same "
-        f"steps, beads and dt), on {THESIS_CORES / best['ranks']:g}× fewer cores. (Projected from {span:g} s runs of "
+        f"{THESIS_DAYS_PER_SPEED * 86400 / rows[0]['speed']:.1f}× less wall time per speed at this run's rate and "
+        f"settings, like for like (the same steps, beads and dt), on {THESIS_CORES / best['ranks']:g}× fewer cores "
+        f"(the study's settings, measured in the next section, run faster). (Projected from {span:g} s runs of "
         "the settled bed, whose grid fill holds fewer beads: the rate is per particle-step; long runs "
         "add output and neighbour-list rebuilds.)\n")
 

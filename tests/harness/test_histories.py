@@ -38,6 +38,12 @@ class Histories(unittest.TestCase):
         # one side's error dominating: its own n - 1
         self.assertAlmostEqual(histories.welch_dof(1.0, 5, 1e-6, 50), 4.0, places=6)
 
+    def test_welch_dof_of_two_exact_sides_is_undefined(self):
+        self.assertTrue(math.isnan(histories.welch_dof(0.0, 5, 0.0, 5)))
+        rows = histories.compare({"batches": 5.0, "m0_u": 1.0, "m0_se_u": 0.0},
+                                 {"batches": 5.0, "m0_u": 1.0, "m0_se_u": 0.0}, METRICS[:1])
+        self.assertTrue(rows[0]["agree"])
+
     def test_smaller_sides_degrees_of_freedom(self):
         self.assertEqual(histories.smaller_dof(5, 3), 2)
         self.assertEqual(histories.smaller_dof(12, 12), 11)
@@ -219,6 +225,16 @@ class Histories(unittest.TestCase):
             # a speed without a record: nothing claimed either way
             self.assertIsNone(histories.differing(histories.variables(a, 14.0), histories.variables(b, 21.0)))
             self.assertIn("not checked", histories.settings_sentence(None))
+            # one number written two ways is one setting; records without settings are no record
+            d2 = study("d", {"dt": "2e-05", "exact": "on"})
+            self.assertEqual(histories.differing(histories.variables(a, 21.0), histories.variables(d2, 21.0)), [])
+            for name, record in (("e", {}), ("f", {"settings": None})):
+                Path(d, name, "21rpm").mkdir(parents=True)
+                Path(d, name, "21rpm", "run.json").write_text(json.dumps(record))
+                self.assertIsNone(histories.variables(str(Path(d, f"{name}.csv")), 21.0))
+            Path(d, "g", "21rpm").mkdir(parents=True)
+            Path(d, "g", "21rpm", "run.json").write_text(json.dumps({"settings": {"period": "0.024", "variables": None}}))
+            self.assertEqual(histories.variables(str(Path(d, "g.csv")), 21.0), {"period": "0.024"})
 
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)

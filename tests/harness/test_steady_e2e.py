@@ -132,9 +132,9 @@ class InterruptedStudy(unittest.TestCase):
                          (self.tmp / name.rsplit("_", 1)[1] / name / "21rpm" / "series_metrics.csv").read_text())
 
 
-# two chained speeds, each capped after two segments: 28 rpm starts from 21 rpm's end state
+# two chained speeds, each capped after three segments: 28 rpm starts from 21 rpm's end state
 CHAIN = ["--speeds", "21,28", "--period", "0.006", "--var", "fill", "0.05", "--var", "dumpdt", "0.005",
-         "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.04"]
+         "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.06"]
 
 
 class InterruptedChain(unittest.TestCase):
@@ -161,7 +161,7 @@ class InterruptedChain(unittest.TestCase):
         subprocess.run(self.run_chain(whole, self.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
         recorded = kill_after_first_segment(self.run_chain(cut, self.tmp / "cut"),
                                             REPO / "post" / cut / "28rpm_progress.json")
-        self.assertEqual(recorded, 1, "killed after 28 rpm's last segment: nothing left to resume")
+        self.assertLess(recorded, 3, "killed after 28 rpm's last segment: nothing left to resume")
         self.assertTrue((self.tmp / "cut" / cut / "21rpm" / "state.restart.gz").exists())
         for f in (REPO / "post" / cut).glob("21rpm*"):  # 21 rpm must come from docs/ now
             f.unlink()
@@ -170,8 +170,9 @@ class InterruptedChain(unittest.TestCase):
         self.assertEqual(resumed.returncode, 0, said[-3000:])
         self.assertIn("plan: 21 rpm: committed", said)
         self.assertNotIn("21 rpm, segment", said)
-        self.assertIn("28 rpm, segment 2:", said)
-        self.assertNotIn("28 rpm, segment 1:", said)
+        self.assertIn(f"28 rpm, segment {recorded + 1}:", said)
+        for k in range(1, recorded + 1):
+            self.assertNotIn(f"28 rpm, segment {k}:", said)
         for rpm in (21, 28):
             for f in ("series_metrics.csv", "series_average.csv"):
                 self.assertEqual((self.tmp / "whole" / whole / f"{rpm}rpm" / f).read_text(),

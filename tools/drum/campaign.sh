@@ -167,7 +167,8 @@ if ready docs/drum/study_yade/21rpm/state.restart.gz; then
     "${yade[@]}" --segment 2 --cap 40
 fi
 if [[ ${#now[@]} -eq 0 ]]; then
-  # each steady YADE speed against the thesis' table at the same speed (a difference: the conventions')
+  # each steady YADE speed against the thesis' table at the same speed (a difference: the set's, with
+  # its timestep and restitution: histories.py lists the settings that differ)
   for rpm in 21 28 35; do
     if grep -q "^$rpm," docs/drum/study_yade.csv; then
       "$py" tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/study_yade.csv --rpm "$rpm" --conventions \

@@ -42,8 +42,8 @@ import harness  # noqa: E402
 
 def satterthwaite(parts):
     """Welch-Satterthwaite degrees of freedom of the sum of se^2 over parts [(se, batches)] (batch
-    means: n - 1 each); nan where a part has fewer than 2 batches."""
-    if any(n - 1 < 1 for _, n in parts):
+    means: n - 1 each); nan where a part has fewer than 2 batches or every se is 0."""
+    if any(n - 1 < 1 for _, n in parts) or not any(se > 0 for se, _ in parts):
         return float("nan")
     return sum(se ** 2 for se, _ in parts) ** 2 / sum(se ** 4 / (n - 1) for se, n in parts)
 
@@ -142,21 +142,34 @@ def row_at(table, rpm):
 
 def variables(table, rpm):
     """The `-var` settings a study ran this speed with (steady.py's run.json beside its table:
-    docs/drum/NAME/<rpm>rpm/run.json), with the period; None where there is no record."""
+    docs/drum/NAME/<rpm>rpm/run.json), with the period; None where there is no such record."""
     record = Path(table).with_suffix("") / f"{rpm:g}rpm" / "run.json"
     if not record.exists():
         return None
-    settings = json.loads(record.read_text()).get("settings", {})
-    return {"period": settings.get("period"), **settings.get("variables", {})}
+    settings = json.loads(record.read_text()).get("settings")
+    if not isinstance(settings, dict):
+        return None
+    return {"period": settings.get("period"), **(settings.get("variables") or {})}
+
+
+def same_value(x, y):
+    """Two settings as written (strings): equal, also as numbers ("2e-5" and "2e-05")."""
+    if x == y:
+        return True
+    try:
+        return float(x) == float(y)
+    except (TypeError, ValueError):
+        return False
 
 
 def differing(a, b):
-    """The settings that differ between two studies' `variables`: [(name, in a, in b)], an unset one
-    as "default"; None where either has no record."""
+    """The settings that differ between two studies' `variables`: [(name, in a, in b)], an unset
+    one as "default" (drum.in's, whatever it was then); None where either has no record."""
     if a is None or b is None:
         return None
     names = sorted(set(a) | set(b))
-    return [(k, a.get(k, "default"), b.get(k, "default")) for k in names if a.get(k) != b.get(k)]
+    return [(k, a.get(k, "default"), b.get(k, "default")) for k in names
+            if not same_value(a.get(k, "default"), b.get(k, "default"))]
 
 
 def settings_sentence(diff):
@@ -237,7 +250,7 @@ def main(argv=None):
                            "failure of the error bars")
     kind.add_argument("--conventions", action="store_true",
                       help="A and B are one speed under two sets of conventions (material table, mixing rules): "
-                           "a difference is the conventions' effect")
+                           "a difference is the set's effect, with whatever else differs (the output lists it)")
     kind.add_argument("--settings", action="store_true",
                       help="A and B are one speed under two other settings (e.g. the drum's wall, named in the "
                            "output): a difference is the settings' effect")

@@ -266,7 +266,7 @@ def markdown(name, rows, reached=(), slow=float("nan")):
                   "rule stops at the first check where it is small enough; the bound, given in brackets, "
                   "covers the true one in 95 % at one check, for independent batches; checked again and "
                   "again until it passes, less: on normal batch means checked after every batch, the true "
-                  "one lies above the target at the stop in at most 8.3 % of runs from 3 batches on, 6.8 % "
+                  "one lies above the target at the stop in at most 9.5 % of runs from 3 batches on, 8.0 % "
                   "from 5 (the README's stop rule).", "",
                   "| rpm | batches | simulated [s] | CPU hours | minutes on 2 cores, as run | minutes on 2 cores, "
                   "machine to itself | Hc [mm] | angle [deg] |",
