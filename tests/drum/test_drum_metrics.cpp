@@ -774,15 +774,9 @@ TEST(DrumSteadyState, SteadySeriesJudgedUnsettledByChanceAtAKnownRate)
     const double phi = 0.9;
     const int replicas = 4000;
     std::mt19937 rng(21);
-    std::normal_distribution<double> normal;
     for (const auto& [n, expected, tolerance] : {std::tuple{140, 0.164, 0.025}, std::tuple{300, 0.028, 0.011}}) {
         int unsettled = 0;
-        for (int r = 0; r < replicas; ++r) {
-            std::vector<double> x(n);
-            x[0] = normal(rng) / std::sqrt(1.0 - phi * phi);
-            for (int i = 1; i < n; ++i) x[i] = phi * x[i - 1] + normal(rng);
-            unsettled += drum::steadyStart({x}) < 0;
-        }
+        for (int r = 0; r < replicas; ++r) unsettled += drum::steadyStart({ar1(n, phi, 1.0, rng)}) < 0;
         const double rate = double(unsettled) / replicas;
         std::printf("AR(1) phi %.1f, %d samples: judged unsettled in %.4f of %d steady series\n", phi, n, rate,
                     replicas);
