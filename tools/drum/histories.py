@@ -114,23 +114,26 @@ def compare(a, b, metrics, alpha=0.05, power=None):
     return rows
 
 
+# the check's outcome, agreeing and not, by what A and B are: two histories of one state (a
+# difference is a failure of the error bars), or one state at two timesteps, under two sets of
+# conventions or two other settings (a difference is the change's effect)
+VERDICTS = {
+    "histories": ("The histories agree within their error bars.",
+                  "The histories DISAGREE: the error bars or the steady-state detection do not hold."),
+    "timesteps": ("The two timesteps agree within the error bars.",
+                  "The two timesteps DIFFER beyond the error bars: the timestep changes the result."),
+    "conventions": ("The two sets of conventions agree within the error bars.",
+                    "The two sets of conventions DIFFER beyond the error bars (rows marked **no**): they change "
+                    "the result there."),
+    "settings": ("The two settings agree within the error bars.",
+                 "The two settings DIFFER beyond the error bars (rows marked **no**): the change of settings "
+                 "changes the result there."),
+}
+
+
 def verdict(agree, kind="histories"):
-    """The sentence for the check's outcome: two histories of one state (a difference is a failure
-    of the error bars), or one state at two timesteps, under two sets of conventions or two other settings (a
-    difference is the change's effect)."""
-    if kind == "timesteps":
-        return ("The two timesteps agree within the error bars." if agree else
-                "The two timesteps DIFFER beyond the error bars: the timestep changes the result.")
-    if kind == "settings":
-        return ("The two settings agree within the error bars." if agree else
-                "The two settings DIFFER beyond the error bars (rows marked **no**): the change of settings "
-                "changes the result there.")
-    if kind == "conventions":
-        return ("The two sets of conventions agree within the error bars." if agree else
-                "The two sets of conventions DIFFER beyond the error bars (rows marked **no**): they change "
-                "the result there.")
-    return ("The histories agree within their error bars." if agree else
-            "The histories DISAGREE: the error bars or the steady-state detection do not hold.")
+    """The sentence for the check's outcome (VERDICTS)."""
+    return VERDICTS[kind][0 if agree else 1]
 
 
 def row_at(table, rpm):
@@ -245,18 +248,16 @@ def main(argv=None):
     p.add_argument("--alpha", type=float, default=0.05, help="family-wise false-alarm rate (default: %(default)s)")
     p.add_argument("--out", help="also write the comparison as Markdown here")
     kind = p.add_mutually_exclusive_group()
-    kind.add_argument("--timesteps", action="store_true",
+    kind.add_argument("--timesteps", dest="kind", action="store_const", const="timesteps", default="histories",
                       help="A and B are one state at two timesteps: a difference is the timestep's effect, not a "
                            "failure of the error bars")
-    kind.add_argument("--conventions", action="store_true",
+    kind.add_argument("--conventions", dest="kind", action="store_const", const="conventions",
                       help="A and B are one speed under two sets of conventions (material table, mixing rules): "
                            "a difference is the set's effect, with whatever else differs (the output lists it)")
-    kind.add_argument("--settings", action="store_true",
+    kind.add_argument("--settings", dest="kind", action="store_const", const="settings",
                       help="A and B are one speed under two other settings (e.g. the drum's wall, named in the "
                            "output): a difference is the settings' effect")
     args = p.parse_args(argv)
-    kind = ("timesteps" if args.timesteps else "conventions" if args.conventions else
-            "settings" if args.settings else "histories")
     texts, every_row, agree = [], [], True
     for rpm in args.rpm:
         a, b = row_at(args.a, rpm), row_at(args.b, rpm)
@@ -273,7 +274,7 @@ def main(argv=None):
                      f"B: `{args.b}` ({b['batches']:g} batches, {b['revolutions']:.1f} revolutions); two-sided "
                      f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics). \"caught at 80 %\": the "
                      f"true difference this check would catch with 80 % probability at these degrees of freedom (a "
-                     f"smaller one may pass unseen).\n\n{table}\n{verdict(here, kind)} "
+                     f"smaller one may pass unseen).\n\n{table}\n{verdict(here, args.kind)} "
                      f"{settings_sentence(differing(variables(args.a, rpm), variables(args.b, rpm)))}\n")
         every_row += rows
         agree = agree and here
