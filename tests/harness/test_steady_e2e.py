@@ -21,8 +21,8 @@ SETTINGS = ["--speeds", "21", "--period", "0.006", "--var", "fill", "0.05", "--v
             "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.08"]
 
 
-def command(name, docs, *extra):
-    return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *SETTINGS, *extra]
+def command(name, docs, *extra, settings=SETTINGS):
+    return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *settings, *extra]
 
 
 def kill_after_first_segment(cmd, recorded_file):
@@ -153,19 +153,16 @@ class InterruptedChain(unittest.TestCase):
         for n in cls.names:
             shutil.rmtree(REPO / "post" / n, ignore_errors=True)
 
-    def run_chain(self, name, docs):
-        return [sys.executable, str(STEADY), "--name", name, "--docs", str(docs), *CHAIN]
-
     def test_a_chain_resumed_in_its_second_speed(self):
         whole, cut = self.names
-        subprocess.run(self.run_chain(whole, self.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
-        recorded = kill_after_first_segment(self.run_chain(cut, self.tmp / "cut"),
+        subprocess.run(command(whole, self.tmp / "whole", settings=CHAIN), cwd=REPO, check=True, capture_output=True)
+        recorded = kill_after_first_segment(command(cut, self.tmp / "cut", settings=CHAIN),
                                             REPO / "post" / cut / "28rpm_progress.json")
         self.assertLess(recorded, 3, "killed after 28 rpm's last segment: nothing left to resume")
         self.assertTrue((self.tmp / "cut" / cut / "21rpm" / "state.restart.gz").exists())
         for f in (REPO / "post" / cut).glob("21rpm*"):  # 21 rpm must come from docs/ now
             f.unlink()
-        resumed = subprocess.run(self.run_chain(cut, self.tmp / "cut"), cwd=REPO, capture_output=True, text=True)
+        resumed = subprocess.run(command(cut, self.tmp / "cut", settings=CHAIN), cwd=REPO, capture_output=True, text=True)
         said = resumed.stdout + resumed.stderr
         self.assertEqual(resumed.returncode, 0, said[-3000:])
         self.assertIn("plan: 21 rpm: committed", said)
