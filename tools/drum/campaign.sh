@@ -147,19 +147,28 @@ fi
 if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
 bound=(--name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60)
 steady "${bound[@]}" --speeds 7,14,21,28,35
-# one timestep against the chain's tc/5 (exactRestitution) at 21 rpm, from its 21 rpm state
-# (skin: the neighbour skin in bead diameters; a thinner one changes only round-off, never which
-# contacts are computed, and has fewer pairs to check where beads move little per step:
-# benchmarks/README.md, "Neighbour skin at the thesis' tc/81")
+# one 21 rpm study from the chain's 21 rpm state, steady with 5 revolutions at least and the
+# standard errors' 95 % bound within the targets, set against the chain's own 21 rpm (tc/5 with
+# exactRestitution) by histories.py KIND (a difference: the change's effect)
+against_chain() {  # NAME KIND OUT MESSAGE, then steady.py's options for the study
+  local name=$1 kind=$2 out=$3 message=$4
+  shift 4
+  steady --name "$name" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+    "$@" --min-batches 5 --confidence 0.95
+  if [[ ${#now[@]} -eq 0 ]]; then
+    "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/$name.csv" --rpm 21 "--$kind" --out "$out" \
+      || echo "campaign: $name differs from the chain's 21 rpm, or the comparison failed ($out)"
+    save "$message" "$out"
+  fi
+}
+# one timestep with the nominal law (skin: the neighbour skin in bead diameters; a thinner one
+# changes only round-off, never which contacts are computed, and has fewer pairs to check where
+# beads move little per step: benchmarks/README.md, "Neighbour skin at the thesis' tc/81")
 timestep() {
   local step=$1 label=$2 segment=$3 skin=$4
-  steady --name "dt_$label" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20 --min-batches 5 --confidence 0.95
-  if [[ ${#now[@]} -eq 0 ]]; then
-    "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/dt_$label.csv" --rpm 21 --timesteps \
-      --out "docs/drum/timestep_21rpm_$label.md" || echo "campaign: tc/5 and $label differ, or the comparison failed (above)"
-    save "Drum: 21 rpm at tc/5 against $label at thesis scale" "docs/drum/timestep_21rpm_$label.md"
-  fi
+  against_chain "dt_$label" timesteps "docs/drum/timestep_21rpm_$label.md" \
+    "Drum: 21 rpm at tc/5 against $label at thesis scale" \
+    --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20
 }
 timestep 5e-6 tc20 0.5 0.3
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
@@ -177,16 +186,11 @@ if [[ ${#now[@]} -eq 0 ]]; then
   done
   save "Drum: YADE's conventions against the thesis' table, steady speeds" docs/drum/conventions_{21,28,35}rpm.md
 fi
-# the drum's wall against the chain's primitive cylinder at 21 rpm (a later --var wall overrides steady()'s)
+# the drum's wall against the chain's primitive cylinder (a later --var wall overrides steady()'s)
 wall() {
-  local kind=$1
-  steady --name "walls_$kind" --speeds 21 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
-    "${thesis[@]}" --var wall "$kind" --segment 2 --cap 40 --min-batches 5 --confidence 0.95
-  if [[ ${#now[@]} -eq 0 ]]; then
-    "$py" tools/drum/histories.py docs/drum/study_thesis.csv "docs/drum/walls_$kind.csv" --rpm 21 --settings \
-      --out "docs/drum/walls_21rpm_$kind.md" || true  # exits 1 where they differ: the answer, in the file
-    save "Drum: 21 rpm steady on the $kind wall against the primitive cylinder" "docs/drum/walls_21rpm_$kind.md"
-  fi
+  against_chain "walls_$1" settings "docs/drum/walls_21rpm_$1.md" \
+    "Drum: 21 rpm steady on the $1 wall against the primitive cylinder" \
+    "${thesis[@]}" --var wall "$1" --segment 2 --cap 40
 }
 wall moving
 wall surface
