@@ -727,7 +727,8 @@ TEST(DrumSteadyState, StandardErrorUpperBoundCoversAtItsConfidence)
 // ratio of the true SE at m batches to the target, peaking just past each
 // ratio sqrt(k/m) where k batches first reach the target. Scanned over every
 // k up to 16 m (5e4 replicas each) and the highest peaks refined (4e5): at
-// most 9.5 % for m = 3 (k = 10), 8.0 % for m = 5 (k = 10). At those ratios
+// most 9.5 % for m = 3 (k = 10), 8.0 % for m = 5 (k = 10); numpy, by
+// tools/drum/stop_rule_rates.py. At those ratios
 // the stop is wrong in more than 5 % and at most 11 % (2e4 replicas: binomial
 // sd 0.002). Without the bound it would be wrong in about two thirds.
 TEST(DrumSteadyState, StopRuleCheckedEveryBatchStopsTooEarlyAtItsWorstRatio)
@@ -765,8 +766,8 @@ TEST(DrumSteadyState, StopRuleCheckedEveryBatchStopsTooEarlyAtItsWorstRatio)
 // A steady series is sometimes judged unsettled: MSER's optimum falls in the
 // second half by chance, more often the more correlated the snapshots and the
 // fewer of them. On AR(1) noise with phi 0.9 (the thesis-scale Hc's lag-one
-// correlation between 0.05 s snapshots) an independent implementation (numpy,
-// 40,000 series) finds 0.164 at 140 samples and 0.028 at 300; asserted within
+// correlation between 0.05 s snapshots) an independent implementation
+// (tools/drum/stop_rule_rates.py, numpy, 40,000 series) finds 0.164 at 140 samples and 0.028 at 300; asserted within
 // 4 combined binomial sd of those (4,000 series here: 0.025 and 0.011). Each
 // such check postpones a speed's stop, nothing else (README, Metrics).
 TEST(DrumSteadyState, SteadySeriesJudgedUnsettledByChanceAtAKnownRate)
