@@ -203,6 +203,13 @@ class Histories(unittest.TestCase):
             self.assertIn("may be somewhat small", text)
             with self.assertRaises(SystemExit):  # a speed listed twice would count twice
                 histories.main([str(a), str(b), "--rpm", "14,14"])
+            rows = harness.read_csv(b)  # B capped at 14 rpm, never found settled
+            rows[0].update(done="False", settle_s=float("nan"), revolutions=float("nan"))
+            harness.write_csv(b, rows)
+            histories.main([str(a), str(b), "--rpm", "14", "--out", str(out)])
+            self.assertIn("B: `" + str(b) + "` (5 batches, no steady window)", out.read_text())
+            self.assertIn("B did not end by the stop rule", out.read_text())
+            self.assertNotIn("A did not end", out.read_text())
 
     def test_the_settings_that_differ_are_named(self):
         import json
@@ -235,6 +242,17 @@ class Histories(unittest.TestCase):
             Path(d, "g", "21rpm").mkdir(parents=True)
             Path(d, "g", "21rpm", "run.json").write_text(json.dumps({"settings": {"period": "0.024", "variables": None}}))
             self.assertEqual(histories.variables(str(Path(d, "g.csv")), 21.0), {"period": "0.024"})
+
+    def test_a_side_that_did_not_stop_by_the_rule_is_named(self):
+        steady = {"batches": 5.0, "revolutions": 5.0, "done": "True", "settle_s": 1.1}
+        capped = {"batches": 4.0, "revolutions": float("nan"), "done": "False", "settle_s": float("nan")}
+        settled_capped = dict(capped, settle_s=2.0, revolutions=3.2)
+        self.assertEqual(histories.not_steady("A", steady), "")
+        self.assertEqual(histories.not_steady("A", {"batches": 5.0}), "")  # no such columns: no claim
+        self.assertIn("B did not end by the stop rule (not found settled", histories.not_steady("B", capped))
+        self.assertIn("B did not end by the stop rule (settled, `done` False", histories.not_steady("B", settled_capped))
+        self.assertEqual(histories.revolutions(steady), "5 batches, 5.0 revolutions")
+        self.assertEqual(histories.revolutions(capped), "4 batches, no steady window")
 
     def test_undefined_metrics_are_left_out(self):
         a = history(np.random.default_rng(1), [0] * 7)

@@ -84,13 +84,20 @@ fi
 steady() { "$py" tools/drum/steady.py --var wall cylinder --var skin 0.3 --commit "$@" "${now[@]}"; }
 # commit what an analysis wrote (only these files: a campaign shares the repository)
 save() {
-  local message=$1 files=() f
+  local message=$1 files=() f k
   shift
   for f in "$@"; do if [[ -e "$f" ]]; then files+=("$f"); fi; done
-  if [[ ${#files[@]} -gt 0 ]]; then
-    git add -- "${files[@]}"
-    git diff --cached --quiet -- "${files[@]}" || git commit -q -m "$message" -- "${files[@]}"
-  fi
+  [[ ${#files[@]} -gt 0 ]] || return 0
+  # another git process (a checkpoint or other work in the repository) may hold the index: retry,
+  # and in the end go on without the commit rather than end the campaign (the files stay written)
+  for k in 1 2 3 4 5 6 7 8 9 10; do
+    if git add -- "${files[@]}" &&
+      { git diff --cached --quiet -- "${files[@]}" || git commit -q -m "$message" -- "${files[@]}"; }; then
+      return 0
+    fi
+    sleep 5
+  done
+  echo "campaign: NOT COMMITTED after $k tries (commit them by hand): ${files[*]}"
 }
 # a step whose start state an earlier step has not written yet (only with --checkpoint-now)
 ready() { [[ -e "$1" ]] || { echo "campaign: $1 not written yet"; false; }; }

@@ -121,7 +121,8 @@ VERDICTS = {
     "histories": ("The histories agree within their error bars.",
                   "The histories DISAGREE: the error bars or the steady-state detection do not hold."),
     "timesteps": ("The two timesteps agree within the error bars.",
-                  "The two timesteps DIFFER beyond the error bars: the timestep changes the result."),
+                  "The two timesteps DIFFER beyond the error bars (rows marked **no**): the timestep, with "
+                  "whatever else differs (named below), changes the result there."),
     "conventions": ("The two sets of conventions agree within the error bars.",
                     "The two sets of conventions DIFFER beyond the error bars (rows marked **no**): they change "
                     "the result there."),
@@ -134,6 +135,26 @@ VERDICTS = {
 def verdict(agree, kind="histories"):
     """The sentence for the check's outcome (VERDICTS)."""
     return VERDICTS[kind][0 if agree else 1]
+
+
+def not_steady(side, row):
+    """The sentence for a side whose speed did not end by the stop rule (steady.py's `done` False: the
+    simulated-time cap, or a ramp's fixed time; its averages then span the series' second half, or
+    what the detection called steady), empty otherwise: its error bars were not checked against the
+    targets, and a drift inside its window shows in neither the averages nor their errors."""
+    settled = "settle_s" not in row or (isinstance(row["settle_s"], float) and math.isfinite(row["settle_s"]))
+    if str(row.get("done", "True")) == "True" and settled:  # (a table without these columns: no claim)
+        return ""
+    how = "settled, " if settled else "not found settled (averaged over the series' second half), "
+    return (f"{side} did not end by the stop rule ({how}`done` {row.get('done')}): its averages are not those of "
+            "a run that met the targets, so read this check as weaker than it looks. ")
+
+
+def revolutions(row):
+    """"N batches, R revolutions" of a side, or what stands in for them where it has no steady window."""
+    r = row.get("revolutions")
+    span = f"{r:.1f} revolutions" if isinstance(r, float) and math.isfinite(r) else "no steady window"
+    return f"{row['batches']:g} batches, {span}"
 
 
 def row_at(table, rpm):
@@ -270,11 +291,11 @@ def main(argv=None):
             ("critical t", "critical_t", "{:.2f}"), ("agree", lambda r: "yes" if r["agree"] else "**no**", None),
             ("caught at 80 %", "detectable", "{:.3g}")])
         here = all(r["agree"] for r in rows)
-        texts.append(f"{rpm:g} rpm, A: `{args.a}` ({a['batches']:g} batches, {a['revolutions']:.1f} revolutions), "
-                     f"B: `{args.b}` ({b['batches']:g} batches, {b['revolutions']:.1f} revolutions); two-sided "
+        texts.append(f"{rpm:g} rpm, A: `{args.a}` ({revolutions(a)}), B: `{args.b}` ({revolutions(b)}); two-sided "
                      f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics). \"caught at 80 %\": the "
                      f"true difference this check would catch with 80 % probability at these degrees of freedom (a "
-                     f"smaller one may pass unseen).\n\n{table}\n{verdict(here, args.kind)} "
+                     f"smaller one may pass unseen).\n\n{table}\n{not_steady('A', a)}{not_steady('B', b)}"
+                     f"{verdict(here, args.kind)} "
                      f"{settings_sentence(differing(variables(args.a, rpm), variables(args.b, rpm)))}\n")
         every_row += rows
         agree = agree and here

@@ -475,8 +475,9 @@ class Study:
             paths = [p for p in paths if p.exists()]
             status = subprocess.run(["git", "status", "--porcelain", "--", *map(str, paths)], cwd=harness.REPO,
                                     capture_output=True, text=True).stdout if paths else ""
-            if status.strip():
-                commit(f"Drum study {a.name}: results written before an interruption", *paths)
+            if status.strip():  # the report too: an interruption before finish() wrote it would leave it stale
+                commit(f"Drum study {a.name}: results written before an interruption", *paths,
+                       *report.write(a.name, self.docs.parent))
         previous = None
         for rpm, done in steps:
             if not done:
