@@ -16,7 +16,8 @@ same few batches, do not keep that rate where one side's error is several times 
 7 metrics. The rows come from steady.py's study tables (docs/drum/NAME.csv), by rpm.
 Agreement is only as telling as the test's power: each row also gives the true difference the
 check would catch with 80 % probability (the check simulated at these standard errors and
-batch counts), so that "agree" reads as "no difference as large as this".
+batch counts), so that "agree" reads as "no difference as large as this". A side that did not end
+by the stop rule (capped, or never found settled) is named as such: its averages are not steady ones.
 
   tools/drum/histories.py docs/drum/study_thesis.csv docs/drum/history_21rpm_from28.csv --rpm 21 \
       --out docs/drum/histories_21rpm.md
