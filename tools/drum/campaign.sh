@@ -3,7 +3,8 @@
 # tools/drum/steady.py study that commits as it goes and continues from what is committed, so
 # rerunning this script goes on where it stopped (a step already committed takes seconds).
 #
-#   mkdir -p post && nohup tools/drum/campaign.sh >> post/campaign.out 2>&1 &
+#   bash setup.sh   # once per checkout: the campaign runs the installed binaries
+#   mkdir -p post && nohup setsid tools/drum/campaign.sh >> post/campaign.out 2>&1 &
 #   tools/drum/campaign.sh --checkpoint-now    # before stopping the machine: checkpoint and stop
 #
 # Do not start it while one of its studies runs on its own (steady.py has no lock); two
@@ -71,7 +72,11 @@ if [[ "${1:-}" == "--checkpoint-now" ]]; then now=(--checkpoint-now); fi
 # (--checkpoint-now runs no simulation and leaves a running campaign's copy alone.)
 if [[ ${#now[@]} -eq 0 ]]; then
   own=post/campaign-bin
-  installed=$(dirname "$(command -v liggghts)")
+  installed=$(dirname "$(command -v liggghts || echo /nonexistent/liggghts)")
+  if [[ ! -e "$installed/../lib/libliggghts_viscoelastic.so" ]]; then
+    echo "campaign: the project's liggghts and model library are not installed ($installed/../lib): run 'bash setup.sh' first"
+    exit 1
+  fi
   rm -rf "$own.new" && mkdir -p "$own.new/bin" "$own.new/lib"
   cp "$installed/../lib/libliggghts_viscoelastic.so" "$own.new/lib/"
   for t in liggghts drum_metrics drum_mesh contact_law collide; do
