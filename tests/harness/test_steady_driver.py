@@ -176,6 +176,25 @@ class Segment(unittest.TestCase):
             self.segment_with_log(self.LOOP.format(t=500.0, n=50000))
 
 
+class Restore(unittest.TestCase):
+    def test_a_checkpoint_of_other_settings_is_not_used_and_says_so(self):
+        # a step whose options were edited between two runs starts over: it must not do so silently
+        import contextlib
+        import io
+        with tempfile.TemporaryDirectory() as d:
+            study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5"]))
+            study.work = Path(d) / "post"
+            part = study.partial(21)
+            part.mkdir(parents=True)
+            saved = {"settings": dict(study.settings, segment=99.0), "start_sha256": "abc", "segments": 4}
+            steady.harness.write_json(part / "progress.json", saved)
+            said = io.StringIO()
+            with contextlib.redirect_stdout(said):
+                self.assertIsNone(study.restore(21, Path(d) / "start", "abc", None))
+            self.assertIn("21 rpm: the checkpoint in", said.getvalue())
+            self.assertIn("not used", said.getvalue())
+
+
 class Pack(unittest.TestCase):
     def test_the_same_state_packs_to_the_same_bytes(self):
         # through differently named temporary files, seconds apart: git must see one object

@@ -305,6 +305,8 @@ class Study:
             return local
         saved = harness.read_json(part / "progress.json")
         if saved["settings"] != self.settings or saved.get("start_sha256") != start_sha:
+            harness.say(WHO, f"{rpm} rpm: the checkpoint in {part} is of other settings or another start state: "
+                             "not used")
             return local
         if local and local["segments"] >= saved["segments"]:
             return local
@@ -364,6 +366,8 @@ class Study:
         done = harness.read_json(progress) if progress.exists() else None
         if done and (done["settings"] != self.settings or done["start"] != str(start)
                      or done.get("start_sha256", start_sha) != start_sha):
+            harness.say(WHO, f"{rpm} rpm: the segments in {self.work} are of other settings or another start "
+                             "state: not resumed")
             done = None
         done = self.restore(rpm, start, start_sha, done)
         if not done:
