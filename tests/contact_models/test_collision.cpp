@@ -565,7 +565,7 @@ TEST(ExactCollision, FrictionlessSpinningPairFeelsNoTangentialForce)
 // rad/s about any axis, tc/4.5 to tc/45, limitForce off and on) the largest
 // force is within 1.5 mu times the peak normal force. (The leapfrog force is
 // a difference of mean rates: at the first and last steps up to 1.33 times
-// mu times the step's mean |Fn|, 1.10 times the peak seen. Where a step's
+// mu times the step's mean |Fn|, 1.075 times the peak seen. Where a step's
 // events ran out, stick and slide alternating at one instant, the rest of
 // the step ran the free spring: 3.8 times.)
 TEST(ExactCollision, SpinningPairsFrictionStaysWithinTheCap)
