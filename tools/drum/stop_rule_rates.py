@@ -11,6 +11,8 @@ tools/drum/metrics.cpp, numpy only):
   tools/drum/stop_rule_rates.py            # about 10 minutes on one core
 """
 
+import argparse
+
 import numpy as np
 from scipy import stats
 from scipy.signal import lfilter
@@ -63,4 +65,6 @@ def main():
 
 
 if __name__ == "__main__":
+    # no options: the arguments are only read so that --help describes the run instead of starting it
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     main()
