@@ -207,9 +207,10 @@ class Histories(unittest.TestCase):
             rows[0].update(done="False", settle_s=float("nan"), revolutions=float("nan"))
             harness.write_csv(b, rows)
             histories.main([str(a), str(b), "--rpm", "14", "--out", str(out)])
-            self.assertIn("B: `" + str(b) + "` (5 batches, no steady window)", out.read_text())
-            self.assertIn("B did not end by the stop rule", out.read_text())
-            self.assertNotIn("A did not end", out.read_text())
+            text = out.read_text()
+            self.assertIn("B: `" + str(b) + "` (5 batches, no steady window)", text)
+            self.assertIn("B did not end by the stop rule", text)
+            self.assertNotIn("A did not end", text)
 
     def test_the_settings_that_differ_are_named(self):
         import json
