@@ -33,8 +33,8 @@
 #    (--min-batches 3 --confidence 0.95), first to 35 rpm: the time to the target as the driver
 #    achieves it (the report's figure for it so far is a replay on study_thesis). 7-28 rpm take more
 #    than an hour each, so 35 rpm, the fifth of nine, decides whether the median is within an hour.
-# 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: tc/20 (here) and the thesis'
-#    tc/81 (1.23e-6 s, step 7) with the nominal law, to a steady state with the recommended rule's
+# 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: the thesis' tc/81
+#    (1.23e-6 s, step 7; first, as the reference and the longest run) and tc/20 with the nominal law, to a steady state with the recommended rule's
 #    bound (the standard errors' 95 % bound within the targets) and 5 revolutions at least, as many
 #    as the chain's tc/5 (study_thesis) has: the check runs at the smaller side's degrees of
 #    freedom, and with 3 batches (2 degrees of freedom) it would catch only differences of 17
@@ -44,16 +44,15 @@
 #    thesis' table at that speed (histories.py --conventions: docs/drum/conventions_<rpm>rpm.md):
 #    the thesis' head drops at 28 rpm and rises from 35, the chain's (thesis' table) rises to 28
 #    and drops by 35; do YADE's conventions, whose bed lets go during 26-28 rpm in the ramp, give
-#    the thesis' drop? Before tc/81, which costs 16 times tc/5 per simulated second (about 15 s
-#    simulated: a day or more of 2 cores).
+#    the thesis' drop? (tc/81, before it, costs 16 times tc/5 per simulated second: about 15 s
+#    simulated, a day or more of 2 cores.)
 # 7. The drum's wall at 21 rpm, steady, from the chain's 21 rpm state under the thesis' table with
 #    the same rule as 5: the rotating mesh (`wall moving`: facets that keep a contact's history) and
 #    the static mesh with a surface velocity (`wall surface`: a bead's tangential spring restarts at
 #    every facet it crosses), each against the chain's primitive cylinder (histories.py --settings:
 #    docs/drum/walls_21rpm_<wall>.md). The slip question is one of friction at the drum, where the
 #    wall's representation could matter; about 4 hours each (the mesh costs 1.27 times the cylinder).
-# 8. tc/81 as in 5.
-# 9. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
+# 8. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
 #    each speed (each starts from a state study_thesis did not pass through), set against
 #    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
 set -euo pipefail
@@ -182,6 +181,9 @@ timestep() {
     "Drum: 21 rpm at tc/5 against $label at thesis scale" \
     --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20
 }
+# the thesis' tc/81 first: the reference every other timestep is read against, and the longest
+# run (a day or more of 2 cores), so it starts before the rest
+timestep 1.23e-6 tc81 0.25 0.1
 timestep 5e-6 tc20 0.5 0.3
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
   steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
@@ -206,7 +208,6 @@ wall() {
 }
 wall moving
 wall surface
-timestep 1.23e-6 tc81 0.25 0.1
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound
