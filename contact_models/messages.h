@@ -82,7 +82,7 @@ inline std::string contradictionText(const ExactSolution& s, double tolerance)
         return format("en %g cannot be reached at dt %g s (tc/dt %.2f): with no normal dashpot at all the contact "
                       "restitutes %.4f%s; use a smaller timestep or another en",
                       p.en, s.dt, p.tc / s.dt, *s.undampedRestitution, why);
-    if (s.undampedTangentialRestitution && far(*s.undampedTangentialRestitution, p.et))
+    if (s.undampedTangentialRestitution && far(*s.undampedTangentialRestitution, s.tangentialTarget))
         return format("et %g cannot be reached at dt %g s (tc/dt %.2f): with no tangential dashpot at all a sticking "
                       "contact restitutes %.4f%s%s",
                       p.et, s.dt, p.tc / s.dt, *s.undampedTangentialRestitution, why,

@@ -8,8 +8,10 @@
 // and the same for a sticking tangential contact (overlap xi, velocity w, per
 // unit tangential mass). At the first overlapping step stock `history` adds a
 // whole step of tangential displacement, vt dt; `pournin` adds only the part
-// of the step since the first touch (SpringStart). The spring stops with the
-// normal contact.
+// of the step since the first touch (SpringStart), and restarts its spring
+// from zero force where the unclipped normal force changed sign since the
+// last step (the cap mu |Fn| passed through zero: timeSinceCapZero). The
+// spring stops with the normal contact.
 //
 // A contact starts between two steps: its first overlap is phase * v0 * dt,
 // with the phase uniform in (0, 1] over the many contacts of a flow. Every
@@ -47,7 +49,11 @@ struct PhaseCollision {
     DiscreteCollision outcome;
     int steps = 0;
     int firstCut = -1;
-    bool sameRegime(const PhaseCollision& o) const { return steps == o.steps && firstCut == o.firstCut; }
+    int capZero = -1;  // `pournin`: the step at which its spring restarted
+    bool sameRegime(const PhaseCollision& o) const
+    {
+        return steps == o.steps && firstCut == o.firstCut && capZero == o.capZero;
+    }
 };
 
 inline PhaseCollision discreteCollisionAtPhase(const UnitCoefficients& u, double dt, bool limitForce, double phase,
@@ -59,7 +65,7 @@ inline PhaseCollision discreteCollisionAtPhase(const UnitCoefficients& u, double
     // tangential overlap and velocity (w0 = 1); the first step adds dt w
     double xi = start == SpringStart::atTouch ? (phase - 1.0) * dt : 0.0, w = 1.0;
     PhaseCollision r;
-    double peak = x;
+    double peak = x, before = 0.0;  // the unclipped normal force at the step before
     while (x > 0.0 && r.steps < maxSteps) {
         const double f = u.kn * x + u.cn * v;
         const bool cut = limitForce && f < 0.0;
@@ -67,8 +73,11 @@ inline PhaseCollision discreteCollisionAtPhase(const UnitCoefficients& u, double
         // a cut normal force leaves a zero friction limit: the tangential force stops too
         if (r.firstCut < 0) {
             xi += dt * w;
+            const double since = start == SpringStart::atTouch ? timeSinceCapZero(before, f, dt) : -1.0;
+            if (since >= 0.0 && u.kt > 0.0) xi = -(u.ct / u.kt) * w + w * since, r.capZero = r.steps;
             w -= dt * (u.kt * xi + u.ct * w) / mt;
         }
+        before = f;
         v -= dt * (cut ? 0.0 : f);
         x += dt * v;
         peak = std::max(peak, x);

@@ -37,6 +37,7 @@ struct ExactSolution {
     UnitCoefficients unit{};            // per unit meff, like pourninUnitCoefficients
     DiscreteCollision achieved;         // phase-averaged outcome with `unit`
     double tcNormal = 0, enNormal = 0;  // the (tc', en') of the normal solution
+    double tangentialTarget = 0;       // the sticking contact's et the solution restitutes
 
     // The request, so the result can be described on its own.
     ContactParameters requested{};
@@ -115,7 +116,35 @@ inline UnitCoefficients normalOnly(double tcPrime, double lnEnPrime)
 
 }  // namespace detail
 
-// `start`: how the tangential model in use begins its spring (discrete.h).
+// The tangential restitution of the continuous law `pournin` integrates, for
+// a sticking contact on a wall: its spring restarts from zero force where the
+// cap mu |Fn| passes through zero, whatever mu (limitForce off: the normal
+// force's zero near the end; with limitForce the contact ends there). In
+// closed form: Pournin's tangential oscillator from (0, 1) up to that zero t0,
+// its spring then at zero force (xi = -c w / k), free until the overlap ends
+// at tc. It is et where the spring holds no force at t0 (et = en).
+inline double letGoRestitution(const ContactParameters& p)
+{
+    const auto flow = [](const Oscillator& o, double x, double u, double t, double& xOut, double& uOut) {
+        const double l = 0.5 * o.c, w = std::sqrt(o.k - l * l), e = std::exp(-l * t);
+        const double co = std::cos(w * t), si = std::sin(w * t) / w;
+        xOut = e * (x * co + (u + l * x) * si), uOut = e * (u * co - (l * u + o.k * x) * si);
+    };
+    const Oscillator n = pourninOscillator(p.tc, std::log(p.en)), t = pourninOscillator(p.tc, std::log(p.et));
+    // from (0, 1) the force k x + c u is e^(-l t) (c cos wt + (k - c l) sin wt / w): zero at w t0 in (0, pi]
+    const double w = std::sqrt(n.k - 0.25 * n.c * n.c);
+    double angle = std::atan2(-n.c * w, n.k - 0.5 * n.c * n.c);
+    if (angle <= 0.0) angle += kPi;
+    const double t0 = angle / w;
+    double xi, u;
+    flow(t, 0.0, 1.0, t0, xi, u);
+    flow(t, -t.c * u / t.k, u, p.tc - t0, xi, u);
+    return -u;
+}
+
+// `start`: how the tangential model in use begins its spring (discrete.h);
+// `pournin` (atTouch) also restarts it at the cap's zero, so without
+// limitForce the tangential target is the law's letGoRestitution, not et.
 inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt, bool limitForce,
                                            SpringStart start = SpringStart::wholeStep)
 {
@@ -159,21 +188,23 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
         v.ct = mt * c;
         return v;
     };
+    const double target = start == SpringStart::atTouch && !limitForce ? letGoRestitution(p) : p.et;
+    s.tangentialTarget = target;
     auto et = [&](double c) {
         return phaseAveragedCollision(tangential(c), dt, limitForce, start).tangentialRestitution;
     };
     double lo = 0.0, hi = 0.999 / dt;  // damping per unit tangential mass; 1 - c dt > 0
-    if (et(lo) <= p.et) {
-        if (et(lo) < p.et * (1.0 - 1e-6)) s.undampedTangentialRestitution = et(lo);
+    if (et(lo) <= target) {
+        if (et(lo) < target * (1.0 - 1e-6)) s.undampedTangentialRestitution = et(lo);
         hi = lo;
     }
-    if (et(hi) > p.et) {
+    if (et(hi) > target) {
         s.failure = ExactFailure::tangentialUnreachable;
         return s;
     }
     for (int it = 0; it < 100 && hi - lo > 1e-13 * hi; ++it) {
         const double mid = 0.5 * (lo + hi);
-        (et(mid) > p.et ? lo : hi) = mid;
+        (et(mid) > target ? lo : hi) = mid;
     }
     s.unit = tangential(0.5 * (lo + hi));
     s.achieved = phaseAveragedCollision(s.unit, dt, limitForce, start);

@@ -54,20 +54,6 @@ struct TangentialState {
     double normalForce = 0.0;
 };
 
-// Where the unclipped normal force kn xi + cn dxi/dt changed sign between the
-// previous step and this one, the cap mu |Fn| of Eq. 3.18 passed through zero
-// in between: the continuous law slid there and reset its spring to zero
-// force, whatever mu. With et != en the spring still holds force then (it is
-// in phase with Fn only when et = en), so sampling the cap at the steps alone
-// keeps part of it and converges slowly (about half order). Returns the time
-// since that zero, by linear interpolation of the force (first order, like
-// the step), or a negative value when the force kept its sign.
-inline double timeSinceCapZero(double previousForce, double force, double dt)
-{
-    if (!(previousForce * force < 0.0)) return -1.0;
-    return dt * force / (force - previousForce);
-}
-
 // The time since a contact's first touch at its first overlapping step:
 // overlap over approach rate (free flight before it), at most a step. Its
 // tangential overlap grew for that long, not a whole step: with a whole step

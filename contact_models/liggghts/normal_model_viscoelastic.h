@@ -61,6 +61,9 @@ public:
     void connectToProperties(PropertyRegistry& registry)
     {
         const char* caller = cmb->is_wall() ? "fix wall/gran model viscoelastic" : "pair gran model viscoelastic";
+        if (wallMassAsParticle && !cmb->is_wall())
+            error->all(FLERR, "pair gran model viscoelastic: wallMassAsParticle applies to wall contacts only (YADE's "
+                              "facet mass): set it on fix wall/gran, not on pair_style");
         if (exactCollision && cmb->get_history_offset("pournin_xi") < 0)
             error->all(FLERR, (std::string(caller) + ": exactCollision on needs `tangential pournin` (it "
                                "corrects the tangential spring at the start and end of each contact)").c_str());

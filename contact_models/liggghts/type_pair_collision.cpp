@@ -2,6 +2,7 @@
 // pair (core/collision.h), the settings it contradicts, its timestep guard
 // and its report.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -35,7 +36,7 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
     std::string report = format("%s: exactCollision on: a single binary collision restitutes what the continuous "
                                 "law does, whatever its start within a step: en, (sticking) et and tc where the law "
                                 "gives them (between two spheres at incidence, or with et != en, finite friction and "
-                                "limitForce off, the law's own en and et; README, exactCollision)\n",
+                                "limitForce off, the law's own en and et, as below; docs/law.md)\n",
                                 caller);
     for (int i = 1; i < stride_; ++i)
         for (int j = i; j < stride_; ++j) {
@@ -56,21 +57,30 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
             // with many contacts is not: the same guard as the plain law, on
             // the stiffnesses actually applied.
             const double stable = stableTimestep(appliedCoefficients(c.normal, c.tangential));
-            if (dt > stable)
+            if (dt > stable) {
+                // the applied law depends on the step: advise the coarsest step it admits
+                // (rounded down to the digits printed, so the advice itself is admitted)
+                const double coarsest = coarsestStableStep(osc->normal, osc->tangential, dt, limitForce);
+                const double scale = std::pow(10.0, 5.0 - std::floor(std::log10(coarsest)));
+                const double advised = std::floor(coarsest * scale) / scale;
                 lmp->error->all(FLERR, format("%s: exactCollision: timestep %g s exceeds the stable timestep %g s of "
                                               "type pair (%d,%d) (tc %g s, en %g, et %g): the multi-contact limit of "
-                                              "the applied law; use timestep < %g",
-                                              caller, dt, stable, i, j, p.tc, p.en, p.et, stable)
+                                              "the applied law, which changes with the step; use timestep <= %.6g "
+                                              "(tc/%.3f)",
+                                              caller, dt, stable, i, j, p.tc, p.en, p.et, advised, p.tc / advised)
                                            .c_str());
-            report += format("  (%d,%d): tc %g s, en %g, et %g%s: tc/dt %.2f; step law kn/meff %.6g 1/s^2, "
-                             "cn/meff %.6g 1/s (continuous: %.6g, %.6g)\n",
+            }
+            // the law's sticking et on a wall: without limitForce its spring lets go at the normal force's zero
+            const double etLaw = limitForce ? p.et : letGoRestitution(p);
+            report += format("  (%d,%d): tc %g s, en %g, et %g%s: tc/dt %.2f; restitutes en %.6f and, sticking on a "
+                             "wall, et %.6f; step law kn/meff %.6g 1/s^2, cn/meff %.6g 1/s (continuous: %.6g, %.6g)\n",
                              i, j, p.tc, p.en, p.et,
                              limitForce ? format(" (limitForce: followed law tc' %.6g s, en' %.6g)",
                                                  kPi / osc->normal.omega,
                                                  std::exp(-osc->normal.lambda * kPi / osc->normal.omega))
                                               .c_str()
                                         : "",
-                             p.tc / dt, c.normal.kStep, c.normal.cStep, osc->normal.k, osc->normal.c);
+                             p.tc / dt, p.en, etLaw, c.normal.kStep, c.normal.cStep, osc->normal.k, osc->normal.c);
         }
     owner_ = owner;
     if (lmp->comm->me == 0) {

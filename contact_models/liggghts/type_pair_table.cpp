@@ -243,7 +243,8 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
     const double dt = lmp->update->dt;
     stride_ = maxType + 1;
     unit_.assign(stride_ * stride_, UnitCoefficients{});
-    std::string report = reportHeader(limitForce, exact);
+    // (exactCollision reports the laws it follows instead: loadCollision)
+    std::string report = collision ? std::string() : reportHeader(limitForce, exact);
     std::vector<std::string> warnings;
     for (int i = 1; i <= maxType; ++i)
         for (int j = i; j <= maxType; ++j) {  // symmetric: (j,i) is (i,j)
@@ -255,7 +256,7 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
             const Derived d = derive(p, dt, limitForce, exact, start);
             checkExact(lmp, d, i, j, dt, caller);
             unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;
-            report += reportLine(p, d, i, j, dt);
+            if (!collision) report += reportLine(p, d, i, j, dt);
             // exactCollision replaces what the nominal law would do at this dt
             if (const auto w = collision ? std::nullopt : warningOf(p, d, i, j, dt, limitForce))
                 warnings.push_back(*w);
@@ -279,7 +280,7 @@ void TypePairTable::say(const std::string& report, const std::vector<std::string
     said_.insert(said_.end(), warnings.begin(), warnings.end());
 
     if (lmp_->comm->me != 0) return;
-    if (newReport) {
+    if (newReport && !report.empty()) {
         if (lmp_->screen) fputs(report.c_str(), lmp_->screen);
         if (lmp_->logfile) fputs(report.c_str(), lmp_->logfile);
     }

@@ -14,10 +14,13 @@ using namespace collide;
 namespace {
 
 // LIGGGHTS' output: the exception's text when it fails, else what it printed.
-std::string outputOf(const Case& c, const std::string& tag, const std::string& settings = "")
+std::string outputOf(const Case& c, const std::string& tag, const std::string& settings = "",
+                     const std::string& wallSettings = "")
 {
+    collide::RunOptions o = options(tag, settings);
+    o.wallSettings = wallSettings;
     try {
-        return runScript(collisionInput(c, options(tag, settings), "run 1\n"), options(tag, settings));
+        return runScript(collisionInput(c, o, "run 1\n"), o);
     } catch (const std::runtime_error& e) {
         return e.what();
     }
@@ -63,10 +66,44 @@ TEST(Contradictions, WallMassAsParticleWithExactSettingsStops)
     for (const char* exact : {"exactRestitution on", "exactCollision on"}) {
         Case c = headOn(Geometry::Wall, false, 0.56, 0.46, 10.0);
         c.tangential = Tangential::Pournin;
-        const std::string out = outputOf(c, "contra_wallmass", std::string("wallMassAsParticle on ") + exact);
+        const std::string out = outputOf(c, "contra_wallmass", exact, "wallMassAsParticle on");
         EXPECT_NE(out.find("ERROR"), std::string::npos) << out;
+        EXPECT_NE(out.find("fix wall/gran model viscoelastic"), std::string::npos) << out;
         EXPECT_NE(out.find("contradicts wallMassAsParticle on"), std::string::npos) << out;
         EXPECT_NE(out.find("sqrt(2) tc"), std::string::npos) << out;
+    }
+}
+
+// wallMassAsParticle is a wall's setting: on pair_style it is an ERROR in
+// every mode (it was ignored under exactRestitution and an ERROR under
+// exactCollision), and on a wall without an exact mode it runs.
+TEST(Contradictions, WallMassAsParticleOnPairStyleStops)
+{
+    for (const char* mode : {"", "exactRestitution on", "exactCollision on"}) {
+        const Case c = headOn(Geometry::Pair, false, 0.56, 0.46, 10.0);
+        const std::string out = outputOf(c, "contra_wallmass_pair", std::string("wallMassAsParticle on ") + mode);
+        EXPECT_NE(out.find("ERROR: pair gran model viscoelastic: wallMassAsParticle applies to wall contacts only"),
+                  std::string::npos)
+            << mode << "\n" << out;
+    }
+    const Case wall = headOn(Geometry::Wall, false, 0.56, 0.46, 10.0);
+    EXPECT_EQ(outputOf(wall, "contra_wallmass_wall", "", "wallMassAsParticle on").find("ERROR"), std::string::npos);
+}
+
+// tangential no_history has no spring for exactRestitution's tangential
+// solve: an ERROR on pairs and walls (it ran, restituting et -0.21 for a
+// logged 0.46).
+TEST(Contradictions, NoHistoryWithExactRestitutionStops)
+{
+    for (Geometry g : {Geometry::Pair, Geometry::Wall}) {
+        Case c = headOn(g, false, 0.46, 0.46, 10.0);
+        c.tangential = Tangential::NoHistory;
+        c.exactRestitution = true;
+        const std::string out = outputOf(c, "contra_nohistory");
+        EXPECT_NE(out.find("ERROR: model viscoelastic tangential no_history: exactRestitution on"), std::string::npos)
+            << out;
+        c.exactRestitution = false;
+        EXPECT_EQ(outputOf(c, "contra_nohistory_plain").find("ERROR"), std::string::npos);
     }
 }
 
@@ -149,4 +186,25 @@ TEST(Contradictions, OverlapBeyondHalfTheSmallerRadiusStopsNamingTheAtoms)
     const std::string wall = run(script(0.6, true), "overlap_wall");
     EXPECT_NE(wall.find("model viscoelastic: atom 1 and the wall overlap by 0.0009"), std::string::npos) << wall;
     EXPECT_EQ(run(script(0.4, false), "overlap_ok").find("ERROR"), std::string::npos);
+}
+
+// exactCollision's guard names the coarsest step it admits, and that step
+// runs: the applied law changes with the step, so the bound seen at a
+// refused step (1.740e-5 s at 1.786e-5 s for en 0.3 / et 0.8 with limitForce)
+// was itself refused.
+TEST(Contradictions, ExactCollisionGuardsAdviceIsAdmitted)
+{
+    Case c = headOn(Geometry::Pair, true, 0.3, 0.8, 5.0);
+    c.params.mu = 0.5;
+    const std::string out = outputOf(c, "contra_guard", "exactCollision on");
+    const std::string key = "use timestep <= ";
+    const size_t at = out.find(key);
+    ASSERT_NE(at, std::string::npos) << out;
+    const double advised = std::stod(out.substr(at + key.size()));
+    EXPECT_LT(advised, c.dt);
+    c.dt = advised;
+    const std::string ok = outputOf(c, "contra_guard_ok", "exactCollision on");
+    EXPECT_EQ(ok.find("ERROR"), std::string::npos) << ok;
+    c.dt = 1.001 * advised;
+    EXPECT_NE(outputOf(c, "contra_guard_over", "exactCollision on").find("exceeds the stable timestep"), std::string::npos);
 }

@@ -31,7 +31,10 @@ std::string name(Geometry g)
     return g == Geometry::Pair ? "pair" : g == Geometry::Wall ? "wall" : "mesh";
 }
 
-std::string name(Tangential t) { return t == Tangential::History ? "history" : "pournin"; }
+std::string name(Tangential t)
+{
+    return t == Tangential::History ? "history" : t == Tangential::Pournin ? "pournin" : "no_history";
+}
 
 double Case::mass1() const { return viscoelastic::sphereMass(2.0 * radius1, density1); }
 double Case::mass2() const { return isWall() ? 0.0 : viscoelastic::sphereMass(2.0 * radius2, density2); }

@@ -16,7 +16,8 @@ namespace collide {
 using viscoelastic::Vec3;
 
 enum class Geometry { Pair, Wall, MeshWall };
-enum class Tangential { History, Pournin };
+// NoHistory (stock, a dashpot only): for LIGGGHTS runs of its settings; no reference models it.
+enum class Tangential { History, Pournin, NoHistory };
 
 Geometry parseGeometry(const std::string& s);
 Tangential parseTangential(const std::string& s);

@@ -56,10 +56,11 @@ std::string modelArgs(const Case& c)
 }
 
 // wall/gran reads model settings only after the wall geometry
-std::string modelSettings(const Case& c, const RunOptions& o)
+std::string modelSettings(const Case& c, const RunOptions& o, bool wall = false)
 {
+    const std::string own = wall && !o.wallSettings.empty() ? " " + o.wallSettings : "";
     return std::string("limitForce ") + (c.limitForce ? "on" : "off") +
-           (c.exactRestitution ? " exactRestitution on" : "") + (o.settings.empty() ? "" : " " + o.settings);
+           (c.exactRestitution ? " exactRestitution on" : "") + (o.settings.empty() ? "" : " " + o.settings) + own;
 }
 
 // A rectangle of two triangles in the plane x = 0, normal +x.
@@ -99,10 +100,10 @@ std::string physics(const Case& c, const RunOptions& o)
     s << "pair_style gran " << modelArgs(c) << " " << modelSettings(c, o) << "\npair_coeff * *\n";
     s << "timestep " << num(c.dt) << "\n";
     if (c.geometry == Geometry::Wall)
-        s << "fix wall all wall/gran " << modelArgs(c) << " primitive type 2 xplane 0.0 " << modelSettings(c, o) << "\n";
+        s << "fix wall all wall/gran " << modelArgs(c) << " primitive type 2 xplane 0.0 " << modelSettings(c, o, true) << "\n";
     if (c.geometry == Geometry::MeshWall)
         s << "fix plane all mesh/surface file plane.stl type 2\n"
-          << "fix wall all wall/gran " << modelArgs(c) << " mesh n_meshes 1 meshes plane " << modelSettings(c, o) << "\n";
+          << "fix wall all wall/gran " << modelArgs(c) << " mesh n_meshes 1 meshes plane " << modelSettings(c, o, true) << "\n";
     s << "fix integr all nve/sphere\n";
     s << "dump traj all custom 1 traj.dump id x y z vx vy vz omegax omegay omegaz\n"
          "dump_modify traj sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n";

@@ -18,6 +18,7 @@ struct RunOptions {
     std::string workdir;                // where inputs and outputs go (created)
     double phase = 0.5;                 // fraction of a step at which the first overlap occurs
     std::string settings;               // more model settings for pair and wall, e.g. "exactCollision on"
+    std::string wallSettings;           // more model settings for the wall alone, e.g. "wallMassAsParticle on"
     // Restart check: write a restart file this many steps into the
     // contact, then finish the run from it in a second invocation.
     int restartAfterContactSteps = -1;
