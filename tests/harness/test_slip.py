@@ -344,15 +344,19 @@ class Slip(unittest.TestCase):
         names = slip.set_names([t1, y1])
         self.assertEqual(names[t1], "conventions default, dt 2e-5, exact on")
         self.assertEqual(names[y1], "conventions yade, dt 1e-5, exact off")
+        # with labels, a set is named by its first history's label, then the other settings in words
+        named = slip.set_names([t1, y1], {t1: "thesis table", y1: "YADE conventions"})
+        self.assertEqual(named[t1], "thesis table at dt 2e-5 s, exactRestitution on")
+        self.assertEqual(named[y1], "YADE conventions at dt 1e-5 s, exactRestitution off")
         studies = [("T1", study(0.6e-3)), ("Y1", study(-1e-3)), ("Y2", study(-6e-3)), ("T2", study(0.5e-3))]
         text = "\n".join(slip.answer_section(studies, 0.05, sets=[t1, y1, y1, t1]))
-        self.assertIn("**By set of settings: Hc drops between 27 and 28 rpm with conventions default, dt 2e-5, "
-                      "exact on in 0 of 2 histories; with conventions yade, dt 1e-5, exact off in 2 of 2 histories.** "
+        self.assertIn("**By set of settings: Hc drops between 27 and 28 rpm with T1 at dt 2e-5 s, exactRestitution "
+                      "on in 0 of 2 histories; with Y1 at dt 1e-5 s, exactRestitution off in 2 of 2 histories.** "
                       "Steps of different sets differ in 4 of 4 Welch contrasts at 95% (below), which reuse the 4 "
                       "histories", text)
         # with the history as the unit: the mean of Y's steps (-1, -6) minus T's (0.6, 0.5)
-        self.assertIn("the mean step with conventions yade, dt 1e-5, exact off minus that with conventions default, "
-                      "dt 2e-5, exact on: -4.05 mm, Welch's p = ", text)
+        self.assertIn("the mean step with Y1 at dt 1e-5 s, exactRestitution off minus that with T1 at dt 2e-5 s, "
+                      "exactRestitution on: -4.05 mm, Welch's p = ", text)
         # without ramps, no release line in the headline
         self.assertNotIn("where the bed lets go", text)
         # with the releases on the ramp clock: each set's onsets, their spread, the gap between sets;
@@ -394,7 +398,8 @@ class Slip(unittest.TestCase):
         # apart is counted as not differing
         text = "\n".join(slip.answer_section([("T1", study(-0.2e-3)), ("Y1", study(-1e-3)), ("T2", study(-1e-3))],
                                              0.05, sets=[t1, y1, t1]))
-        self.assertIn("exact on in 1 of 2 histories; with conventions yade, dt 1e-5, exact off in 1 of 1 history.** "
+        self.assertIn("exactRestitution on in 1 of 2 histories; with Y1 at dt 1e-5 s, exactRestitution off in 1 of 1 "
+                      "history.** "
                       "Steps of different sets differ in 1 of 2 Welch contrasts", text)
         # without sets every study is its own: no headline, no histories paragraph
         text = "\n".join(slip.answer_section(studies, 0.05))

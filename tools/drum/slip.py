@@ -17,6 +17,8 @@ falling below 1 and the drum contacts' rolling (`wall_roll`) and slip (`wall_sli
   tools/drum/slip.py --study slip_thesis "thesis table (bead-drum mu 0.95)" \\
       --study slip_yade "YADE 1.12 conventions (bead-drum mu 0.5, facet meff m/2, no attraction)" \\
       --start study_thesis:21 --out docs/drum/slip_test
+
+Needs: python3-matplotlib (tools/harness), python3-numpy, python3-scipy.
 """
 
 import argparse
@@ -339,11 +341,22 @@ def study_settings(docs, name):
     return None
 
 
-def set_names(sets):
+# the input variables a set differs in, by what they are (a label names the conventions itself)
+PLAIN = {"dt": "dt {} s", "exact": "exactRestitution {}", "conventions": "conventions {}"}
+
+
+def set_names(sets, labels=None):
     """A name per set of settings: the settings in which the sets differ ('default' where a set
-    leaves one unset)."""
+    leaves one unset). With `labels` ({set: the label of its first history}) the label names the
+    set, by what it is ("thesis table (bead-drum mu 0.95)"), followed by the other settings it
+    differs in, in words (the conventions are the label's)."""
     keys = [dict(k or ()) for k in dict.fromkeys(sets)]
     differing = sorted({v for k in keys for v in k if len({k2.get(v) for k2 in keys}) > 1})
+    if labels:
+        rest = [v for v in differing if v != "conventions"]
+        return {k: labels[k] + (" at " + ", ".join(PLAIN.get(v, v + " {}").format(dict(k or ()).get(v, "default"))
+                                                  for v in rest) if rest else "")
+                for k in dict.fromkeys(sets)}
     return {k: ", ".join(f"{v} {dict(k or ()).get(v, 'default')}" for v in differing) or "one set"
             for k in dict.fromkeys(sets)}
 
@@ -359,7 +372,7 @@ def between_histories(values, sets):
         stats.ttest_ind(groups[1], groups[0], equal_var=False).pvalue)
 
 
-def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None, changes=None):
+def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None, changes=None, labels=None):
     """The answer per set of settings, over its histories. First where each history's bed lets go
     along the ramp (`onsets`: ramp_clock of each release onset, None where a bed never lets go):
     its spread within a set against the gap between sets, described (a handful of histories; with
@@ -367,8 +380,8 @@ def sets_headline(verdicts, sets, pairs, level, onsets=None, robust=None, change
     Hc drops at the 27 -> 28 rpm step, with how many of the windows of window_section call that
     drop (`robust`: per history the verdicts over WINDOWS). Last the contrasts between sets, with
     what their error bars leave out, and the sets' steps (`changes`, one per history) compared
-    with the history as the unit. Histories are listed in the order given."""
-    names = set_names(sets)
+    with the history as the unit. Histories are listed in the order given. `labels`: set_names'."""
+    names = set_names(sets, labels)
     lines = []
     if onsets and all(o is not None for o in onsets):
         by_set = {k: [o for o, s in zip(onsets, sets) if s == k] for k in names}
@@ -450,7 +463,11 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
              for i in range(len(found)) for j in range(i + 1, len(found))]
     grouped = len(set(found_sets)) < len(found_sets)
     if grouped and "?" not in verdicts:
-        lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows, [got[0] for _, got in found])
+        labels = {}
+        for (label, _), key in zip(found, found_sets):
+            labels.setdefault(key, label)
+        lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows, [got[0] for _, got in found],
+                               labels)
     same = []
     for i, j, difference, critical in pairs:
         (la, a), (lb, b), va, vb = found[i], found[j], verdicts[i], verdicts[j]
@@ -534,8 +551,9 @@ def first_drop(step_rows):
 
 
 def markdown(studies, window, batches, alpha, command, null=None, ramps=None, windows=(), sets=None, robust=None):
-    lines = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", "",
-             f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
+    # the answer first, then how the steps were read, then each study
+    title = ["# The slip test (Fig. 3.5-3.6): does the bed drop between 27 and 28 rpm?", ""]
+    lines = [f"Written by `{command}`. Each speed: the last {window:g} of its run, averaged with a standard "
              f"error by batch means over {batches} contiguous batches; a step counts as a rise or a drop "
              f"where it passes a two-sided Welch t-test at {alpha:g} (per comparison: about {alpha:g} of the "
              "steps without a change read as one). The first row of a study may be the steady speed it "
@@ -590,7 +608,8 @@ def markdown(studies, window, batches, alpha, command, null=None, ramps=None, wi
                              f"{hc_called} of {hc_compared} ({hc_called / max(hc_compared, 1):.1%}) | "
                              + (f"{min(lag):+.2f} to {max(lag):+.2f}" if lag else "-") + " |")
             lines.append("")
-    lines += answer_section(studies, alpha, ramps, sets, robust) + list(windows)
+    lines = (title + answer_section(studies, alpha, ramps, sets, robust) + list(windows)
+             + ["## How the steps were read", ""] + lines)
     for k, (label, speeds) in enumerate(studies):
         rows = steps(speeds, alpha)
         got, first = answer(rows), first_drop(rows)
