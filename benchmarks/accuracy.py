@@ -12,7 +12,9 @@
          (snapshots every --snapshot-dt), Hc, Hd and the angle of repose averaged over the window
          (`drum_metrics series --average all`, batch-means standard errors); drift = difference to
          the finest nominal dt.
-Writes OUT/accuracy_cost.csv (one row per dt and mode) and OUT/accuracy_cost.json."""
+Writes OUT/accuracy_cost.csv (one row per dt and mode) and OUT/accuracy_cost.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, drum_metrics, collide."""
 
 import math
 import sys

@@ -9,7 +9,9 @@ with exactCollision, interleaved rounds, loop-time ratio; and, as a measure no o
 machine can move, the instructions each run executes (valgrind's callgrind: the whole run, the pair
 force computation, LIGGGHTS' loop over neighbours with the contact model called in it, and the contact
 model's own instructions per contact-step, like for like).
-Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json."""
+Writes OUT/collision.csv (errors), OUT/collision_cost.csv (rounds) and OUT/collision.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun, valgrind; liggghts, contact_law."""
 
 import argparse
 import shutil

@@ -2,7 +2,9 @@
 """Per-contact force of the physics core: Google Benchmark (build/benchmarks/bench_core, from
 benchmarks/bench_core.cpp) with repetitions, aggregates only.
 Writes OUT/core.csv (Google Benchmark's CSV), OUT/core.context (its machine report) and
-OUT/core.json (the contacts per iteration, bench_core.cpp's kContacts)."""
+OUT/core.json (the contacts per iteration, bench_core.cpp's kContacts).
+
+Needs: python3-matplotlib (tools/harness); build/benchmarks/bench_core (-DBUILD_BENCHMARKS=ON)."""
 
 import re
 import subprocess

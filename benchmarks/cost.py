@@ -8,7 +8,9 @@ pair (`contact_law stock`).
   2. the time ratio: --rounds rounds, the models interleaved, LIGGGHTS' loop time of each;
      medians and the median of the per-round ratios.
 Without --restart a slab is settled first (drum.in from the grid, 1 s at 21 rpm, ~8 min on 2 cores).
-Writes OUT/model_cost.csv (one row per round) and OUT/model_cost.json."""
+Writes OUT/model_cost.csv (one row per round) and OUT/model_cost.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, drum_metrics, contact_law."""
 
 import sys
 from pathlib import Path

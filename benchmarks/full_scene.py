@@ -25,7 +25,9 @@ seconds, the variants interleaved over --rounds (A B C ... A B C ...):
                   their combined particle-steps over the later one's loop time, against fast's
 Cost: LIGGGHTS loop time (median, and the range over rounds), particle-steps per second, beads,
 ghosts and neighbour pairs per rank (LIGGGHTS' Nlocal/Nghost/Neighs), neighbour-list builds.
-Writes OUT/full_scene.csv (one row per run) and OUT/full_scene.json."""
+Writes OUT/full_scene.csv (one row per run) and OUT/full_scene.json.
+
+Needs: python3-matplotlib (tools/harness), python3-scipy, mpirun; liggghts, contact_law."""
 
 import gzip
 import shutil

@@ -4,7 +4,9 @@ dropped onto a floor, Table 3.1's en) at each --ratios tc/dt with nominal and wi
 coefficients, against the finest timestep with nominal coefficients (the reference): the kinetic
 energy over time, the time the column needs to come to rest and its final height.
 Writes OUT/multicontact.csv (one row per run), OUT/multicontact_<run>.csv (the series) and
-OUT/multicontact.json."""
+OUT/multicontact.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts."""
 
 import shutil
 import sys

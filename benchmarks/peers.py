@@ -7,7 +7,8 @@ mesh and YADE's mixing rules on both sides (`-var wall moving -var conventions y
 each side times its own stepping loop only (LIGGGHTS' loop time, YADE's O.run after 20 warm-up
 steps). One YADE process per core count serves all rounds (its first step costs minutes, see
 yade/drum_yade.py); before each timed round it runs the LIGGGHTS side (yade/liggghts_round.py).
-Needs yade and pvpython (Debian: apt-get install yade paraview).
+Needs yade and pvpython (Debian: apt-get install yade paraview) besides python3-matplotlib (tools/harness)
+and liggghts.
 Writes OUT/peers.csv (one row per core count and round) and OUT/peers.json."""
 
 import re

@@ -5,7 +5,9 @@ over [--skip, --time] (`drum_metrics series --average all`, batch-means standard
 per simulated second: --rounds rounds of --span s runs from each period's end state, the periods
 interleaved, median. --cost-only re-times the end states of earlier runs.
 The runs stay in post/reduce/: their restarts feed peers.py (12 mm) and scaling.py (24 mm).
-Writes OUT/reductions.csv (one row per period) and OUT/reductions.json."""
+Writes OUT/reductions.csv (one row per period) and OUT/reductions.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, drum_metrics."""
 
 import sys
 from pathlib import Path

@@ -10,6 +10,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   multicontact  the dense column with exactRestitution, ~10 min
   collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
   friction_sweep  exactCollision's friction on 20,000 random wall collisions against the law, ~6 min
+  exact_modes   one wall collision with friction per mode against dt/tc, mu 0.5, 5, 1e6, ~3 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
   stability_exact  the dense column under exactRestitution's and exactCollision's coefficients, ~1 h
   reductions    6 / 12 / 24 mm periods from the grid, ~1 h
@@ -17,7 +18,9 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   yade_collide  YADE on the same two-body collisions (needs yade)
   peers         YADE on the same drum state (the 12 mm state of reductions; needs yade, pvpython), ~15 min
   scaling       the full drum (the 24 mm state of reductions) on 1 and 2 ranks, ~5 min
-The README goes to benchmarks/README.md when --out is benchmarks/results, else to OUT/README.md."""
+The README goes to benchmarks/README.md when --out is benchmarks/results, else to OUT/README.md.
+
+Needs: python3-matplotlib (tools/harness), and what each section's script names."""
 
 import argparse
 import sys
@@ -29,6 +32,7 @@ import harness  # noqa: E402
 import common  # noqa: E402
 import accuracy  # noqa: E402
 import collision  # noqa: E402
+import exact_modes  # noqa: E402
 import friction_sweep  # noqa: E402
 import core  # noqa: E402
 import cost  # noqa: E402
@@ -53,6 +57,7 @@ def settings(restart):
         "multicontact": (multicontact, [[]]),
         "collision": (collision, [["--rounds", "15"]]),
         "friction_sweep": (friction_sweep, [[]]),
+        "exact_modes": (exact_modes, [[]]),
         "stability": (stability, [["--scenes", "binary,column"],
                                   ["--scenes", "drum", "--restart", slab],
                                   ["--scenes", "drum", "--restart", slab, "--drum-runs", "0.3:hooke",
@@ -84,7 +89,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Two-body collisions: YADE and `limitForce on`", [yade_collide]),
         ("## 3. Accuracy against cost", [accuracy]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
-        ("### Every single collision exact: exactCollision", [collision, friction_sweep]),
+        ("### Every single collision exact: exactCollision", [collision, friction_sweep, exact_modes]),
         ("## 4. Stability map", [stability]),
         ("### The guard under the exact laws", [stability_exact]),
         ("## 5. Scaling: the full drum", [scaling]),

@@ -5,7 +5,9 @@ statistics) and the parallel efficiency t(1) / (n t(n)) per round (median). Rank
 are oversubscribed and say nothing about efficiency; they check that the decomposition runs.
 The README section: the full thesis drum (24 mm state of reductions.py) and a projection of the
 thesis' speed sweep from the best rate.
-Writes OUT/scaling.csv (one row per run) and OUT/scaling.json."""
+Writes OUT/scaling.csv (one row per run) and OUT/scaling.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts."""
 
 import sys
 from pathlib import Path

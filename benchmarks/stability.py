@@ -18,7 +18,9 @@
 The guard's limits come from `contact_law limit`. --append merges the rows into the existing
 OUT/stability_column.csv and OUT/DRUM_NAME.csv (a rerun of the same en, dt/tc, model and load
 replaces the old row).
-Writes OUT/stability_{binary,column,drum,limits}.csv and OUT/stability.json."""
+Writes OUT/stability_{binary,column,drum,limits}.csv and OUT/stability.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, collide, contact_law."""
 
 import sys
 from pathlib import Path

@@ -16,7 +16,9 @@ with dt, and so does the energy a settled column keeps (stable runs, whose energ
 the run, stay within 1-30 times the reference's; unstable ones grow by decades from one dt to the
 next). A sweep stops after two failing stock runs in a row once the guard has stopped the model. Runs whose logs are complete in post/stability_exact/ are read, not
 rerun (an interrupted sweep resumes).
-Writes OUT/stability_exact.csv (one row per run) and OUT/stability_exact.json."""
+Writes OUT/stability_exact.csv (one row per run) and OUT/stability_exact.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, contact_law."""
 
 import sys
 from pathlib import Path

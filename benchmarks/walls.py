@@ -6,7 +6,9 @@ scene needs".) From one settled state (--restart), runs
   surface/90, surface/360   coarser and finer meshes
 interleaved over --rounds; cost: loop time, median, and its ratio to surface/180 per round
 (median); metrics: time averages over round 1's run (`drum_metrics series --average all`).
-Writes OUT/walls.csv (one row per variant) and OUT/walls.json."""
+Writes OUT/walls.csv (one row per variant) and OUT/walls.json.
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts, drum_metrics."""
 
 import sys
 from pathlib import Path

@@ -3,8 +3,8 @@
 tc 1e-4 s, 1 m/s, --phases contact-start phases each): YADE (yade/collide_yade.py) clips the
 normal force at zero (no attraction), as `limitForce on` does; `collide sweep-dt` with limitForce
 on, off, and on with exactRestitution.
-Needs yade (Debian package) besides collide. Writes OUT/yade_collide.csv (one row per tc/dt) and
-OUT/yade_collide.json."""
+Needs yade (Debian package) besides collide and python3-matplotlib (tools/harness).
+Writes OUT/yade_collide.csv (one row per tc/dt) and OUT/yade_collide.json."""
 
 import math
 import shutil

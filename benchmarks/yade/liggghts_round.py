@@ -4,7 +4,9 @@ appends the round number) before each of YADE's timed rounds: the settled state 
 the rotating mesh and YADE's mixing rules, its log at NAME_r<ROUND>.log under post/ (peers.py
 reads the loop time from it).
 
-  benchmarks/yade/liggghts_round.py STATE TIME PERIOD DT CORES NAME ROUND   (DT: YADE's, the same)"""
+  benchmarks/yade/liggghts_round.py STATE TIME PERIOD DT CORES NAME ROUND   (DT: YADE's, the same)
+
+Needs: python3-matplotlib (tools/harness), mpirun; liggghts."""
 
 import sys
 from pathlib import Path

@@ -33,11 +33,11 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
                                    .c_str());
     const double dt = lmp->update->dt;
     collision_.assign(stride_ * stride_, CollisionLaws{});
-    std::string report = format("%s: exactCollision on: a single binary collision restitutes what the continuous "
+    std::string report = format("%s (viscoelastic %s): exactCollision on: a single binary collision restitutes what the continuous "
                                 "law does, whatever its start within a step: en, (sticking) et and tc where the law "
                                 "gives them (between two spheres at incidence, or with et != en, finite friction and "
                                 "limitForce off, the law's own en and et, as below; docs/law.md)\n",
-                                caller);
+                                caller, VISCOELASTIC_VERSION);
     for (int i = 1; i < stride_; ++i)
         for (int j = i; j < stride_; ++j) {
             const ContactParameters& p = params_[i * stride_ + j];

@@ -162,8 +162,9 @@ void checkExact(LAMMPS_NS::LAMMPS* lmp, const Derived& d, int i, int j, double d
 
 std::string reportHeader(bool limitForce, bool exact)
 {
-    return format("viscoelastic: %s per type pair (limitForce %s), outcomes averaged over the contact-start phase:\n",
-                  exact ? "coefficients for the exact restitution at this timestep (exactRestitution on)"
+    return format("viscoelastic %s: %s per type pair (limitForce %s), outcomes averaged over the contact-start "
+                  "phase:\n",
+                  VISCOELASTIC_VERSION, exact ? "coefficients for the exact restitution at this timestep (exactRestitution on)"
                         : "Pournin coefficients",
                   limitForce ? "on" : "off");
 }

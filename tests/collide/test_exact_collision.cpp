@@ -301,7 +301,7 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
     // centres apart (vt^2 / d), which moves both en and the friction impulse
     // (Walton's relation is 4 % off at vn 0.1 m/s, vt/vn 4). Compared: en and
     // the change of the contact point's tangential velocity, du. The claim
-    // (README, Tests), well inside the 0.5 % target at tc/10 and 1 % up to
+    // (docs/tests.md), well inside the 0.5 % target at tc/10 and 1 % up to
     // tc/9: at most 0.1 % (en) and 0.25 % (du) at the coarsest steps, 0.03 %
     // and 0.2 % at tc/10, the steps' own error in sliding (the pull's fall
     // within a step is not followed).
@@ -358,7 +358,7 @@ TEST(ExactCollision, FiniteFrictionWithEtOtherThanEn)
     // with limitForce the cap falls with the force, more slowly than the
     // spring's force, and the law gives 0.466 and 0.803. exactCollision follows
     // the instantaneous cap through the step (cappedFlow): every start phase
-    // within 3e-4 of the law for en and et at every step (the claim, README,
+    // within 3e-4 of the law for en and et at every step (the claim, docs/law.md,
     // Tests; far inside the 0.5 % target at tc/10 and 1 % at tc/5), pair and
     // wall, limitForce off and on.
     unsigned seed = 600;
@@ -389,7 +389,7 @@ TEST(ExactCollision, SlidingWithEtOtherThanEnFollowsItsLaw)
     // Gross sliding (vt/vn 4, mu 0.3, 1 m/s) with et != en, against the
     // continuous law (reference ODE, rigid-arm spring; between two spheres the
     // law's en is not the request: the pull of the tangential motion). Within
-    // the claim (README, Tests: 0.8 % at the coarsest steps, 0.25 % at tc/10;
+    // the claim (docs/tests.md: 0.8 % at the coarsest steps, 0.25 % at tc/10;
     // inside the 1 % and 0.5 % targets), for en and the
     // contact point's change of tangential velocity du, Table 3.1's beads and
     // en 0.3 / et 0.8 (where the lightly damped spring sticks again and slides

@@ -177,3 +177,90 @@ TEST(ExactCollisionSweep, TwoLawsDifferByTheLeverArmAlone)
     EXPECT_GT(low, 0.0);
     EXPECT_NEAR(high / low, 1.0, 0.02);
 }
+
+// Every single collision against the same mode at tc/1000, 64 random start
+// phases per case: Table 3.1's beads (en 0.56, et 0.46, mu 0.5) and bead-drum
+// pair (en = et = 0.46, mu 0.95), wall and pair, sticking (vt/vn 0.2) and
+// sliding (vt/vn 4), limitForce off and on, at tc/5 (the coarsest the guard
+// admits with limitForce: 5.6 for the beads), tc/7.3 and tc/10. The target:
+// 0.5 % at tc/10 and 1 % coarser, of en and of the tangential velocity
+// change (what friction did). Met by every wall case and every sticking pair;
+// a pair sliding at vt/vn 4 misses it at tc/5 (1.6 % for the bead-drum pair),
+// second order in the normal's turn per step (below).
+TEST(ExactCollisionSweep, EverySingleCollisionAtSixtyFourPhasesMatchesTheFineStep)
+{
+    std::mt19937 g(64);
+    struct M { const char* name; viscoelastic::ContactParameters p; };
+    double worst10 = 0.0, worstCoarse = 0.0;
+    int beyondTarget = 0;
+    for (const M& m : {M{"beads", {1e-4, 0.56, 0.46, 0.5}}, M{"bead-drum", {1e-4, 0.46, 0.46, 0.95}}})
+    for (Geometry geometry : {Geometry::Wall, Geometry::Pair})
+    for (double slope : {0.2, 4.0})
+    for (bool limitForce : {false, true}) {
+        Case c;
+        c.geometry = geometry;
+        c.limitForce = limitForce;
+        c.params = m.p;
+        c.normalSpeed = 1.0;
+        c.tangentialSpeed = slope;
+        const std::string tag = std::string("phases64_") + m.name + "_" + name(geometry) + (limitForce ? "_lf" : "") +
+                                (slope > 1.0 ? "_slide" : "_stick");
+        Case fine = c;
+        fine.dt = c.params.tc / 1000.0;
+        const Outcome ref = measureTrajectory(fine, runLiggghts(fine, options(tag + "_fine", "exactCollision on"), {0.5})[0]);
+        for (double ratio : {limitForce ? 5.6 : 5.0, 7.3, 10.0}) {
+            c.dt = c.params.tc / ratio;
+            const std::vector<Trajectory> runs =
+                runLiggghts(c, options(tag + "_" + std::to_string(int(10 * ratio)), "exactCollision on"), randomPhases(g, 64));
+            double worst = 0.0;
+            for (const Trajectory& t : runs) {
+                const Outcome o = measureTrajectory(c, t);
+                const double dn = std::fabs(o.restitution / ref.restitution - 1.0);
+                const double dtan = std::fabs((1.0 + o.tangentialRestitution) / (1.0 + ref.tangentialRestitution) - 1.0);
+                worst = std::max({worst, dn, dtan});
+            }
+            // a pair sliding fast at incidence: its normal turns by theta = vt dt / d per step, and the
+            // pull (vt^2 / d), which friction changes within the step, is taken per step: second order
+            // in theta (0.027 at tc/5 for vt 4 m/s between 3 mm beads), 19-28 theta^2 measured
+            const double theta = geometry == Geometry::Pair ? slope * c.normalSpeed * c.dt / (2.0 * c.radius1) : 0.0;
+            const double target = ratio >= 10.0 ? 0.005 : 0.01;
+            EXPECT_LT(worst, std::max(target, 35.0 * theta * theta)) << tag << " tc/dt " << ratio;
+            std::printf("%s tc/dt %.1f: worst %.2e (normal's turn per step %.3f)\n", tag.c_str(), ratio, worst, theta);
+            if (worst > target) ++beyondTarget;
+            (ratio >= 10.0 ? worst10 : worstCoarse) = std::max(ratio >= 10.0 ? worst10 : worstCoarse, worst);
+        }
+    }
+    std::printf("worst single collision of 64 phases against tc/1000: %.2e at tc/10, %.2e at tc/5-tc/7.3; %d of 48 "
+                "cases beyond the 0.5 %% / 1 %% target (fast sliding pairs)\n", worst10, worstCoarse, beyondTarget);
+    EXPECT_LE(beyondTarget, 4);
+}
+
+// exactRestitution's phase mean of a sticking wall collision (vn 0.2 m/s,
+// vt/vn 0.2, mu 5: the case; and mu 0.5 for the beads' et != en) at
+// tc/5, tc/7.3 and tc/10, 256 phases, against the same mode at tc/1000 (the
+// request plus LIGGGHTS' lever arm, +0.27 % at this speed, or the law's own
+// et where its spring lets go at the normal force's zero). Within 0.1 %; the
+// solve that ignored pournin's spring restart at that zero was +2.2 % off at
+// tc/5 and +1.0 % at tc/7.3.
+TEST(ExactCollisionSweep, ExactRestitutionsTangentialMeanHoldsAtCoarseSteps)
+{
+    for (const viscoelastic::ContactParameters& p :
+         {viscoelastic::ContactParameters{1e-4, 0.46, 0.46, 5.0}, viscoelastic::ContactParameters{1e-4, 0.56, 0.46, 0.5}}) {
+        Case c;
+        c.geometry = Geometry::Wall;
+        c.exactRestitution = true;
+        c.params = p;
+        c.normalSpeed = 0.2;
+        c.tangentialSpeed = 0.04;
+        c.dt = p.tc / 1000.0;
+        const double fine = meanOutcome(c, runLiggghts(c, options("exactrest_fine"), {0.25, 0.75})).tangentialRestitution;
+        for (double ratio : {5.0, 7.3, 10.0}) {
+            c.dt = p.tc / ratio;
+            const double mean = meanOutcome(c, runLiggghts(c, options("exactrest_" + std::to_string(int(10 * ratio))),
+                                                           evenPhases(256))).tangentialRestitution;
+            std::printf("en %.2f et %.2f tc/dt %.1f: mean et %.5f against %.5f at tc/1000 (%+.3f %%)\n", p.en, p.et,
+                        ratio, mean, fine, 100.0 * (mean / fine - 1.0));
+            EXPECT_NEAR(mean / fine, 1.0, 1e-3) << "en " << p.en << " tc/dt " << ratio;
+        }
+    }
+}

@@ -27,7 +27,7 @@ double beadMass() { return 4.0 / 3.0 * kPi * std::pow(1.5e-3, 3) * 2500.0; }
 
 TEST(Coefficients, PourninFormsAsDerived)
 {
-    // Eq. 3.22-3.25 in their consistent forms (README: as printed and as
+    // Eq. 3.22-3.25 in their consistent forms (docs/law.md: as printed and as
     // coded), written out independently for a bead pair.
     const double meff = beadMass() / 2.0, tc = kBeads.tc, en = kBeads.en, et = kBeads.et;
     const double mt = 1.0 / (1.0 / meff + 2.0 * (1.5e-3 * 1.5e-3) / (0.4 * beadMass() * 1.5e-3 * 1.5e-3));

@@ -1,9 +1,13 @@
-// The reader of inputs/materials.in (tools/common/materials.h) that
-// contact_law uses.
+// The reader of inputs/materials.in (tools/common/materials.h) that the
+// tools use, and where they look for the file.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "materials.h"
@@ -54,4 +58,65 @@ TEST(Materials, ReadsTheRepositoryFile)
     for (const char* name : {"bead_tc", "bead_en", "bead_et", "bead_mu", "drum_tc", "drum_en", "drum_et", "drum_mu",
                              "bead_d", "bead_rho"})
         EXPECT_EQ(m.count(name), 1u) << name;
+}
+
+// Where the tools find the file (findMaterials): the one named, else the
+// working directory's inputs/materials.in, else the installed copy; each test
+// in an empty directory of its own.
+class MaterialsLookup : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        home = std::filesystem::current_path();
+        dir = std::filesystem::temp_directory_path() / ("materials_lookup_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(dir);
+        std::filesystem::current_path(dir);
+        ::unsetenv(kVariable);
+    }
+    void TearDown() override
+    {
+        std::filesystem::current_path(home);
+        std::filesystem::remove_all(dir);
+        ::unsetenv(kVariable);
+    }
+    static constexpr const char* kVariable = "LIGGGHTS_VISCOELASTIC_DATADIR";
+    std::filesystem::path home, dir;
+};
+
+TEST_F(MaterialsLookup, TheNamedFileWhetherItExistsOrNot)
+{
+    EXPECT_EQ(findMaterials("glass.in"), "glass.in");  // reading it says it is missing
+}
+
+TEST_F(MaterialsLookup, TheWorkingDirectoryBeforeTheInstalledCopy)
+{
+    std::filesystem::create_directories("inputs");
+    std::ofstream("inputs/materials.in") << "variable bead_tc equal 2e-4\n";
+    ::setenv(kVariable, SOURCE_DIR "/inputs", 1);
+    EXPECT_EQ(findMaterials(""), "inputs/materials.in");
+}
+
+TEST_F(MaterialsLookup, TheInstalledCopyFromAnyDirectory)
+{
+    // compiled in: share/<project>/ under the install prefix
+    EXPECT_EQ(installedMaterials(), TOOLS_DATADIR "/materials.in");
+    EXPECT_NE(installedMaterials().find("/share/liggghts_viscoelastic/materials.in"), std::string::npos);
+    // moved (here: to the source tree, so the test needs no installation)
+    ::setenv(kVariable, SOURCE_DIR "/inputs", 1);
+    EXPECT_EQ(findMaterials(""), SOURCE_DIR "/inputs/materials.in");
+    EXPECT_EQ(readMaterials(findMaterials("")).at("bead_en"), 0.56);
+}
+
+TEST_F(MaterialsLookup, NoFileAnywhereNamesEveryPlaceTried)
+{
+    ::setenv(kVariable, (dir / "nowhere").c_str(), 1);
+    try {
+        findMaterials("");
+        ADD_FAILURE() << "found a file";
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("inputs/materials.in (in the working directory)"), std::string::npos) << what;
+        EXPECT_NE(what.find((dir / "nowhere/materials.in").string() + " (installed)"), std::string::npos) << what;
+        EXPECT_NE(what.find("--materials"), std::string::npos) << what;
+    }
 }

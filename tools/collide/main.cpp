@@ -7,7 +7,8 @@
 //   collide recurrence  the integrator's recurrence alone: restitution vs dt/tc
 //   collide law-map     the continuous law's tangential restitution vs angle and mu
 // Material defaults (tc, en, et, mu, bead size and density) come from the
-// `variable` lines of --materials (inputs/materials.in: Table 3.1).
+// `variable` lines of --materials (inputs/materials.in: Table 3.1; where it is
+// looked for: findMaterials, materials.h).
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli.h"
 #include "gnuplot.h"
 #include "materials.h"
 #include "messages.h"
@@ -26,6 +28,13 @@ using namespace collide;
 namespace fs = std::filesystem;
 
 namespace {
+
+using tools::check;
+using tools::kNonNegative;
+using tools::kPositive;
+
+// en and et: the reference's integration stiffens without bound as e -> 0
+const tools::Rule kRestitutionChecked{"in [1e-6, 1]", [](double v) { return v >= 1e-6 && v <= 1.0; }};
 
 // An option whose default is `scale` times a variable of the materials file.
 struct MaterialOption {
@@ -40,11 +49,12 @@ struct Options {
     Case c;
     RunOptions run;
     std::string geometry = "pair", tangential = "pournin", limitForce = "off", exact = "off";
+    std::string exactCollision = "off";  // `case` only
     double ratio = 100.0;  // tc / dt
     double spin = 0.0;     // z spin of sphere 1 [rad/s]
     int phases = 1;
     std::string csv, png;
-    std::string materials = "inputs/materials.in";
+    std::string materials;  // empty: findMaterials' lookup
     std::vector<MaterialOption> fromMaterials;
 
     // Sets the material options of the chosen subcommand that the command
@@ -55,17 +65,22 @@ struct Options {
         for (const MaterialOption& m : fromMaterials)
             if (m.command->parsed() && m.option->count() == 0) missing.push_back(&m);
         if (missing.empty()) return;
-        if (!fs::exists(materials)) {
-            std::string names;
-            for (const MaterialOption* m : missing) names += (names.empty() ? "" : ", ") + m->option->get_name();
-            throw std::runtime_error("materials file " + materials + " not found: it gives the defaults of " + names +
-                                     " (run from the repository root, pass --materials PATH, or give the values)");
+        std::string names;
+        for (const MaterialOption* m : missing) names += (names.empty() ? "" : ", ") + m->option->get_name();
+        std::string file;
+        try {
+            file = findMaterials(materials);
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(std::string(e.what()) + ", or give the values of " + names);
         }
-        const std::map<std::string, double> values = readMaterials(materials);
+        if (!fs::exists(file))
+            throw std::runtime_error("materials file " + file + " not found: it gives the defaults of " + names +
+                                     " (pass another --materials FILE, or give the values)");
+        const std::map<std::string, double> values = readMaterials(file);
         for (const MaterialOption* m : missing) {
             const auto it = values.find(m->variable);
             if (it == values.end())
-                throw std::runtime_error(materials + ": no variable " + m->variable + " (the default of " +
+                throw std::runtime_error(file + ": no variable " + m->variable + " (the default of " +
                                          m->option->get_name() + ")");
             *m->value = m->scale * it->second;
         }
@@ -78,6 +93,10 @@ struct Options {
         c.tangential = parseTangential(tangential);
         c.limitForce = limitForce == "on";
         c.exactRestitution = exact == "on";
+        // exactCollision: the model setting, and its continuous law (the
+        // spring at the rigid arms) as the reference it converges to
+        c.rigidArmSpring = exactCollision == "on";
+        if (c.rigidArmSpring) run.settings += (run.settings.empty() ? "" : " ") + std::string("exactCollision on");
         c.spin1 = Vec3(0, 0, spin);
         c.dt = c.params.tc / ratio;
     }
@@ -99,12 +118,11 @@ void addMaterialOption(CLI::App* app, Options& o, const std::string& flag, doubl
 // (`recurrence` takes only these: the normal recurrence needs no et or mu).
 void addContactOptions(CLI::App* app, Options& o)
 {
-    addMaterialOption(app, o, "--tc", o.c.params.tc, "bead_tc", "contact duration [s]", CLI::PositiveNumber);
-    addMaterialOption(app, o, "--en", o.c.params.en, "bead_en", "normal restitution", CLI::Range(1e-6, 1.0));
+    addMaterialOption(app, o, "--tc", o.c.params.tc, "bead_tc", "contact duration [s]", check(kPositive));
+    addMaterialOption(app, o, "--en", o.c.params.en, "bead_en", "normal restitution", check(kRestitutionChecked));
     app->add_option("--limit-force", o.limitForce, "forbid attraction: on | off")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    app->add_option("--materials", o.materials, "LIGGGHTS include with the `variable NAME equal VALUE` defaults")
-        ->capture_default_str();
+    app->add_option("--materials", o.materials, materialsHelp());
 }
 
 void addCaseOptions(CLI::App* app, Options& o)
@@ -117,30 +135,36 @@ void addCaseOptions(CLI::App* app, Options& o)
                     "model setting exactRestitution: coefficients corrected for the timestep: on | off")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     addContactOptions(app, o);
-    addMaterialOption(app, o, "--et", o.c.params.et, "bead_et", "tangential restitution", CLI::Range(1e-6, 1.0));
-    addMaterialOption(app, o, "--mu", o.c.params.mu, "bead_mu", "friction coefficient", CLI::NonNegativeNumber);
-    addMaterialOption(app, o, "--r1", o.c.radius1, "bead_d", "radius of sphere 1 [m]", CLI::PositiveNumber, 0.5);
-    addMaterialOption(app, o, "--r2", o.c.radius2, "bead_d", "radius of sphere 2 [m]", CLI::PositiveNumber, 0.5);
-    addMaterialOption(app, o, "--rho1", o.c.density1, "bead_rho", "density of sphere 1 [kg/m^3]", CLI::PositiveNumber);
-    addMaterialOption(app, o, "--rho2", o.c.density2, "bead_rho", "density of sphere 2 [kg/m^3]", CLI::PositiveNumber);
-    app->add_option("--vn", o.c.normalSpeed, "normal approach speed [m/s]")->check(CLI::PositiveNumber)->capture_default_str();
+    addMaterialOption(app, o, "--et", o.c.params.et, "bead_et", "tangential restitution", check(kRestitutionChecked));
+    addMaterialOption(app, o, "--mu", o.c.params.mu, "bead_mu", "friction coefficient", check(kNonNegative));
+    addMaterialOption(app, o, "--r1", o.c.radius1, "bead_d", "radius of sphere 1 [m]", check(kPositive), 0.5);
+    addMaterialOption(app, o, "--r2", o.c.radius2, "bead_d", "radius of sphere 2 [m]", check(kPositive), 0.5);
+    addMaterialOption(app, o, "--rho1", o.c.density1, "bead_rho", "density of sphere 1 [kg/m^3]", check(kPositive));
+    addMaterialOption(app, o, "--rho2", o.c.density2, "bead_rho", "density of sphere 2 [kg/m^3]", check(kPositive));
+    app->add_option("--vn", o.c.normalSpeed, "normal approach speed [m/s]")
+        ->check(check(kPositive))->capture_default_str();
     app->add_option("--vt", o.c.tangentialSpeed, "tangential speed of 1 relative to 2 [m/s]")->capture_default_str();
     app->add_option("--spin", o.spin, "spin of sphere 1 about z [rad/s]")->capture_default_str();
     app->add_option("--liggghts", o.run.liggghts, "liggghts executable")->capture_default_str();
     app->add_option("--preload", o.run.preload, "library to LD_PRELOAD into a stock liggghts");
-    app->add_option("--np", o.run.ranks, "MPI ranks")->check(CLI::PositiveNumber)->capture_default_str();
+    app->add_option("--np", o.run.ranks, "MPI ranks")->check(check(kPositive))->capture_default_str();
     app->add_option("--workdir", o.run.workdir, "directory for LIGGGHTS inputs and outputs");
     app->add_option("--csv", o.csv, "write results as CSV");
 }
 
 double relErr(double value, double ref) { return ref != 0.0 ? value / ref - 1.0 : value; }
 
-// LIGGGHTS outcome averaged over `phases` evenly spread contact-start phases
-// (p + 0.5) / phases, all in one run.
+// `phases` evenly spread contact-start phases (k + 0.5) / phases; one: the
+// run options' phase.
+std::vector<double> contactPhases(const Options& o, int phases)
+{
+    return phases == 1 ? std::vector<double>{o.run.phase} : evenPhases(phases);
+}
+
+// LIGGGHTS outcome averaged over the contact-start phases, all in one run.
 Outcome runAveraged(const Options& o, int phases)
 {
-    const std::vector<double> ph = phases == 1 ? std::vector<double>{o.run.phase} : evenPhases(phases);
-    return meanOutcome(o.c, runLiggghts(o.c, o.run, ph));
+    return meanOutcome(o.c, runLiggghts(o.c, o.run, contactPhases(o, phases)));
 }
 
 std::string describe(const Case& c, bool withVelocity = true, bool withDt = true)
@@ -150,6 +174,7 @@ std::string describe(const Case& c, bool withVelocity = true, bool withDt = true
       << (c.limitForce ? "on" : "off") << ", tc " << c.params.tc << " s, en " << c.params.en << ", et "
       << c.params.et << ", mu " << c.params.mu;
     if (c.exactRestitution) s << ", exactRestitution on";
+    if (c.rigidArmSpring) s << ", exactCollision on";
     if (withVelocity) s << ", vn " << c.normalSpeed << " m/s, vt " << c.tangentialSpeed << " m/s";
     if (withDt) s << ", tc/dt " << c.params.tc / c.dt;
     return s.str();
@@ -160,39 +185,54 @@ int runCase(Options& o)
     o.finish();
     const Reference ref = reference(o.c);
     const std::optional<ClosedForm> cf = closedForm(o.c);
-    const Outcome lig = runAveraged(o, o.phases);
+    const std::vector<double> phases = contactPhases(o, o.phases);
+    const std::vector<Trajectory> runs = runLiggghts(o.c, o.run, phases);
+    const Outcome lig = meanOutcome(o.c, runs);
+    std::vector<Outcome> each;  // per phase
+    for (const Trajectory& t : runs) each.push_back(measureTrajectory(o.c, t));
     const bool oblique = o.c.tangentialSpeed != 0.0 || o.spin != 0.0;
 
-    std::printf("case: %s\nreference: %s%s\n\n", describe(o.c).c_str(), ref.source.c_str(),
+    std::printf("case: %s\nreference: %s%s\n", describe(o.c).c_str(), ref.source.c_str(),
                 cf && cf->hasTangential ? (" (closed form regime: " + cf->regime + ")").c_str() : "");
-    std::printf("%-26s %14s %14s %14s %10s\n", "quantity", "closed form", "reference", "LIGGGHTS", "rel. err");
-    auto row = [&](const char* q, double cfv, bool hasCf, double r, double l) {
-        char cfs[32] = "-";
-        if (hasCf) std::snprintf(cfs, sizeof cfs, "%.6g", cfv);
-        std::printf("%-26s %14s %14.6g %14.6g %+9.3f%%\n", q, cfs, r, l, 100.0 * relErr(l, r));
+    // a single contact's outcome depends on where in a step it starts (by
+    // several per cent at tc/10): the mean says what the law does, the worst
+    // phase what one contact may see
+    if (phases.size() == 1)
+        std::printf("LIGGGHTS: 1 contact-start phase (%g of a step)\n\n", phases[0]);
+    else
+        std::printf("LIGGGHTS: %zu contact-start phases ((k + 0.5)/%zu of a step, in one run): their mean, and the "
+                    "single phase farthest from the reference\n\n",
+                    phases.size(), phases.size());
+    std::printf("%-26s %14s %14s %14s %10s %14s %10s\n", "quantity", "closed form", "reference", "LIGGGHTS mean",
+                "rel. err", "worst phase", "rel. err");
+    struct Quantity {
+        const char *label, *key;
+        double Outcome::*field;
+        bool tangential;  // shown for oblique impacts only
     };
-    const bool cfN = cf.has_value(), cfT = cf && cf->hasTangential;
-    const Outcome cfo = cf ? cf->outcome : Outcome{};
-    row("restitution", cfo.restitution, cfN, ref.outcome.restitution, lig.restitution);
-    row("duration [s]", cfo.duration, cfN, ref.outcome.duration, lig.duration);
-    row("peak overlap [m]", cfo.peakOverlap, cfN, ref.outcome.peakOverlap, lig.peakOverlap);
-    if (oblique) {
-        row("tangential restitution", cfo.tangentialRestitution, cfT, ref.outcome.tangentialRestitution,
-            lig.tangentialRestitution);
-        row("rebound spin [rad/s]", cfo.spin1, cfT, ref.outcome.spin1, lig.spin1);
-        row("rebound angle [deg]", cfo.reboundAngle, cfT, ref.outcome.reboundAngle, lig.reboundAngle);
+    const Quantity quantities[] = {{"restitution", "restitution", &Outcome::restitution, false},
+                                   {"duration [s]", "duration", &Outcome::duration, false},
+                                   {"peak overlap [m]", "peak_overlap", &Outcome::peakOverlap, false},
+                                   {"tangential restitution", "tangential_restitution",
+                                    &Outcome::tangentialRestitution, true},
+                                   {"rebound spin [rad/s]", "rebound_spin", &Outcome::spin1, true},
+                                   {"rebound angle [deg]", "rebound_angle", &Outcome::reboundAngle, true}};
+    std::ostringstream csv;
+    csv << "quantity,reference,liggghts,liggghts_worst_phase\n";
+    for (const Quantity& q : quantities) {
+        const double r = ref.outcome.*q.field, mean = lig.*q.field;
+        double worst = each.front().*q.field;
+        for (const Outcome& x : each)
+            if (std::fabs(relErr(x.*q.field, r)) > std::fabs(relErr(worst, r))) worst = x.*q.field;
+        csv << q.key << "," << r << "," << mean << "," << worst << "\n";
+        if (q.tangential && !oblique) continue;
+        char cfs[32] = "-";
+        if (cf && (!q.tangential || cf->hasTangential)) std::snprintf(cfs, sizeof cfs, "%.6g", cf->outcome.*q.field);
+        std::printf("%-26s %14s %14.6g %14.6g %+9.3f%% %14.6g %+9.3f%%\n", q.label, cfs, r, mean,
+                    100.0 * relErr(mean, r), worst, 100.0 * relErr(worst, r));
     }
     std::printf("duration difference: %.2f steps\n", (lig.duration - ref.outcome.duration) / o.c.dt);
-    if (!o.csv.empty()) {
-        std::ofstream f(o.csv);
-        f << "quantity,reference,liggghts\n"
-          << "restitution," << ref.outcome.restitution << "," << lig.restitution << "\n"
-          << "duration," << ref.outcome.duration << "," << lig.duration << "\n"
-          << "peak_overlap," << ref.outcome.peakOverlap << "," << lig.peakOverlap << "\n"
-          << "tangential_restitution," << ref.outcome.tangentialRestitution << "," << lig.tangentialRestitution << "\n"
-          << "rebound_spin," << ref.outcome.spin1 << "," << lig.spin1 << "\n"
-          << "rebound_angle," << ref.outcome.reboundAngle << "," << lig.reboundAngle << "\n";
-    }
+    if (!o.csv.empty()) std::ofstream(o.csv) << csv.str();
     return 0;
 }
 
@@ -397,14 +437,21 @@ int main(int argc, char** argv)
 
     CLI::App* one = app.add_subcommand("case", "one impact: reference vs LIGGGHTS");
     addCaseOptions(one, o);
-    one->add_option("--ratio", o.ratio, "tc / dt")->check(CLI::PositiveNumber)->capture_default_str();
-    one->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+    one->add_option("--ratio", o.ratio, "tc / dt")->check(check(kPositive))->capture_default_str();
+    int casePhases = 16;
+    one->add_option("--phases", casePhases, "contact-start phases: their mean and the worst single one")
+        ->check(check(kPositive))->capture_default_str();
+    one->add_option("--exact-collision", o.exactCollision,
+                    "model setting exactCollision: every collision restitutes en and et (needs --tangential "
+                    "pournin): on | off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
 
     std::vector<double> ratios{5, 10, 20, 50, 100};
     CLI::App* dt = app.add_subcommand("sweep-dt", "error against tc/dt and the observed order");
     addCaseOptions(dt, o);
     dt->add_option("--ratios", ratios, "tc/dt values")->delimiter(',')->capture_default_str();
-    dt->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+    dt->add_option("--phases", o.phases, "contact-start phases to average over")->check(check(kPositive))
+        ->capture_default_str();
     dt->add_option("--png", o.png, "write the chart as PNG");
 
     std::vector<double> angles{5, 15, 25, 35, 45, 55, 65, 75, 85};
@@ -413,8 +460,9 @@ int main(int argc, char** argv)
     addCaseOptions(ang, o);
     ang->add_option("--angles", angles, "incidence angles from the normal [deg]")->delimiter(',')->capture_default_str();
     ang->add_option("--speed", speed, "impact speed [m/s]")->capture_default_str();
-    ang->add_option("--ratio", o.ratio, "tc / dt")->check(CLI::PositiveNumber)->capture_default_str();
-    ang->add_option("--phases", o.phases, "contact-start phases to average over")->capture_default_str();
+    ang->add_option("--ratio", o.ratio, "tc / dt")->check(check(kPositive))->capture_default_str();
+    ang->add_option("--phases", o.phases, "contact-start phases to average over")->check(check(kPositive))
+        ->capture_default_str();
     ang->add_option("--png", o.png, "write the chart as PNG");
 
     std::vector<double> mus{0.1, 0.2, 0.5, 0.95, 10};
@@ -431,12 +479,19 @@ int main(int argc, char** argv)
     addContactOptions(rec, o);
     rec->add_option("--dt-over-tc", fractions, "dt/tc values")->delimiter(',')->capture_default_str();
 
-    CLI11_PARSE(app, argc, argv);
+    if (const std::optional<int> done = tools::parse(app, "collide", argc, argv)) return *done;
+    // what the model would stop on at init, said before a run is set up
+    if (*one && o.exactCollision == "on") {
+        if (o.tangential != "pournin")
+            return tools::usageError("collide", "--exact-collision on needs --tangential pournin");
+        if (o.exact == "on")
+            return tools::usageError("collide", "--exact-collision on and --exact-restitution on are alternatives");
+    }
     try {
         if (*rec) { o.finish(); return runRecurrence(o, fractions); }
-        if (*one) return runCase(o);
+        if (*one) { o.phases = casePhases; return runCase(o); }
         if (*map) return runLawMap(o, mus, mapAngles, speed);
-        if (*dt) { o.phases = std::max(o.phases, 1); return runSweepDt(o, ratios); }
+        if (*dt) return runSweepDt(o, ratios);
         return runSweepAngle(o, angles, speed);
     } catch (const std::exception& e) {
         std::cerr << "collide: " << e.what() << "\n";

@@ -9,6 +9,8 @@ them), or COLLIDE=build/tools/collide/collide LIGGGHTS=build/contact_models/ligg
 defaults: inputs/materials.in (Table 3.1). Every average is over 128 evenly spread contact-start
 phases (128 copies of the impact in one LIGGGHTS run): a single contact's restitution depends on
 its phase by several per cent at tc/10.
+
+Needs: python3-matplotlib (tools/harness); collide, liggghts.
 """
 
 import math

@@ -15,6 +15,8 @@ Tables are read from the studies' *_average.csv by column name; the chart of all
 (xvfb-run -a pvbatch tools/drum/render.py). Texts: tools/drum/templates/*.md.in.
 A missing input stops the collection before anything is written, listing every missing
 file; --allow-missing writes the documents with those sections marked as not collected.
+
+Needs: python3-matplotlib (tools/harness); drum_metrics; pvbatch and xvfb-run (paraview, xvfb) for the picture.
 """
 
 import math

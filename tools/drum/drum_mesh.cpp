@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli.h"
 #include "materials.h"
 
 int main(int argc, char** argv)
@@ -19,32 +20,33 @@ int main(int argc, char** argv)
     double diameter = 0.0, length = 0.024, x0 = 0.0;
     int segments = 360, ridges = 0;
     double depth = 0.0;
-    std::string out = "drum.stl", materials = "inputs/materials.in";
+    std::string out = "drum.stl", materials;  // materials empty: findMaterials' lookup
     app.add_option("--diameter", diameter, "inner diameter [m] (default: 2 drum_R of --materials)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--materials", materials, "Table 3.1 and the scene's constants")->capture_default_str();
-    app.add_option("--length", length, "axial length [m]")->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(tools::check(tools::kPositive));
+    app.add_option("--materials", materials, materialsHelp());
+    app.add_option("--length", length, "axial length [m]")
+        ->check(tools::check(tools::kPositive))->capture_default_str();
     app.add_option("--x0", x0, "axial start [m]")->capture_default_str();
     app.add_option("--segments", segments, "facets around the circumference")->check(CLI::Range(3, 100000))->capture_default_str();
     app.add_option("--ridges", ridges,
                    "grooved drum: this many axial ridges around the circumference (instead of --segments facets)")
         ->check(CLI::Range(3, 100000));
-    app.add_option("--depth", depth, "groove depth beyond the cylinder [m] (with --ridges)")->check(CLI::PositiveNumber);
+    app.add_option("--depth", depth, "groove depth beyond the cylinder [m] (with --ridges)")
+        ->check(tools::check(tools::kPositive));
     app.add_option("-o,--output", out, "output file")->capture_default_str();
-    CLI11_PARSE(app, argc, argv);
+    if (const std::optional<int> done = tools::parse(app, "drum_mesh", argc, argv)) return *done;
+    if ((ridges > 0) != (depth > 0.0))
+        return tools::usageError("drum_mesh", "--ridges and --depth go together (a grooved drum needs both)");
     if (diameter <= 0.0) try {
-            const auto m = readMaterials(materials);
-            if (!m.count("drum_R")) throw std::runtime_error(materials + ": no variable drum_R");
+            const std::string file = findMaterials(materials);
+            const auto m = readMaterials(file);
+            if (!m.count("drum_R")) throw std::runtime_error(file + ": no variable drum_R");
             diameter = 2.0 * m.at("drum_R");
         } catch (const std::exception& e) {
             std::cerr << "drum_mesh: " << e.what() << " (or give --diameter)\n";
-            return 2;
+            return 1;
         }
 
-    if ((ridges > 0) != (depth > 0.0)) {
-        std::cerr << "drum_mesh: --ridges and --depth go together (a grooved drum needs both)\n";
-        return 2;
-    }
     const double r = 0.5 * diameter, pi = std::acos(-1.0);
     // the profile around the axis: counter-clockwise (angle, radius) points
     std::vector<std::pair<double, double>> profile;

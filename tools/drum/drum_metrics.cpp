@@ -28,6 +28,7 @@
 #include <set>
 #include <sstream>
 
+#include "cli.h"
 #include "gnuplot.h"
 #include "metrics.h"
 
@@ -494,7 +495,7 @@ int main(int argc, char** argv)
     std::vector<std::string> files;
     CLI::App* s = app.add_subcommand("series", "metrics of one run over time");
     s->add_option("--prefix", prefix, "bead files are <prefix>_<step>.vtp")->required();
-    s->add_option("--dt", dt, "timestep of the run [s]")->check(CLI::PositiveNumber)->capture_default_str();
+    s->add_option("--dt", dt, "timestep of the run [s]")->check(tools::check(tools::kPositive))->capture_default_str();
     s->add_option("--rpm", rpm, "drum speed (sign: direction about +x)")->required();
     s->add_option("--skip", skip, "ignore snapshots before this time [s]")->capture_default_str();
     s->add_option("--until", until, "ignore snapshots after this time [s]");
@@ -508,18 +509,18 @@ int main(int argc, char** argv)
     s->add_option("--batch-seconds", batchSeconds,
                   "batch means over batches of this many seconds (e.g. a revolution, 60/rpm; a multiple of the "
                   "snapshot spacing) instead of 5 batches")
-        ->check(CLI::PositiveNumber);
+        ->check(tools::check(tools::kPositive));
     s->add_option("--cache", cacheFile, cacheHelp);
     std::vector<std::string> targetSpecs;
     int minBatches = 5;
     double confidence = 0.0;
     CLI::App* st = app.add_subcommand("steady", "the stop rule: settled, and the target standard errors reached?");
     st->add_option("--prefix", prefix, "bead files are <prefix>_<step>.vtp")->required();
-    st->add_option("--dt", dt, "timestep of the run [s]")->check(CLI::PositiveNumber)->capture_default_str();
+    st->add_option("--dt", dt, "timestep of the run [s]")->check(tools::check(tools::kPositive))->capture_default_str();
     st->add_option("--rpm", rpm, "drum speed (sign: direction about +x)")->required();
     st->add_option("--batch-seconds", batchSeconds, "batch length [s] (a multiple of the snapshot spacing)")
         ->required()
-        ->check(CLI::PositiveNumber);
+        ->check(tools::check(tools::kPositive));
     st->add_option("--target", targetSpecs, "KEY=SE in the metric's unit (default: Hc=0.0003 angle=0.3)");
     st->add_option("--min-batches", minBatches, "fewest whole batches for done")->capture_default_str();
     st->add_option("--confidence", confidence,
@@ -535,11 +536,14 @@ int main(int argc, char** argv)
     CLI::App* l = app.add_subcommand("metrics", "list the metrics (key, columns, unit, label, description) as CSV");
     std::string fileA, fileB;
     CLI::App* c = app.add_subcommand("compare", "largest position and velocity differences of two snapshots (by bead id)");
-    c->add_option("a", fileA, "first .vtp")->required()->check(CLI::ExistingFile);
-    c->add_option("b", fileB, "second .vtp")->required()->check(CLI::ExistingFile);
-    CLI11_PARSE(app, argc, argv);
+    c->add_option("a", fileA, "first .vtp")->required();
+    c->add_option("b", fileB, "second .vtp")->required();
+    if (const std::optional<int> done = tools::parse(app, "drum_metrics", argc, argv)) return *done;
     try {
         if (*c) {
+            // a named file that is missing: an error of the work (1), not of the usage
+            for (const std::string& f : {fileA, fileB})
+                if (!fs::exists(f)) throw std::runtime_error(f + ": no such file");
             const drum::Difference d = drum::compare(drum::readBed(fileA, 0.0), drum::readBed(fileB, 0.0));
             std::printf("beads %d, max position difference %.6g m, max velocity difference %.6g m/s\n", d.beads,
                         d.position, d.velocity);

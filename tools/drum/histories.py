@@ -26,6 +26,8 @@ by the stop rule (capped, or never found settled) is named as such: its averages
 
 With several speeds, after each speed's own check, the rows of all of them at once: how many lie
 beyond 2 combined standard errors against the count error bars that hold give (`pooled`).
+
+Needs: python3-matplotlib (tools/harness), python3-numpy, python3-scipy; drum_metrics.
 """
 
 import argparse

@@ -17,6 +17,8 @@ at the rate benchmarks/full_scene.py measured for the study's settings (`fast`, 
 rounds, from the steady 21 rpm state: BENCHMARK below), where that benchmark ran at the study's step.
 
   tools/drum/report.py --name study_thesis
+
+Needs: python3-matplotlib (tools/harness); drum_metrics.
 """
 
 import argparse

@@ -9,6 +9,8 @@ tools/drum/metrics.cpp, numpy only):
    (searched over all but the last tenth), i.e. a steady series judged unsettled.
 
   tools/drum/stop_rule_rates.py            # about 10 minutes on one core
+
+Needs: python3-numpy, python3-scipy.
 """
 
 import argparse

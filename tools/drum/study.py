@@ -23,6 +23,8 @@ linearly to TO over SECONDS (-var wall ramp); its metrics get each snapshot's sp
 run's own record (NAME_ramp_FROM_TO_rpm.csv), and are averaged per 1 rpm band
 (NAME_ramp_FROM_TO_bands.csv).
 Run from anywhere; liggghts and drum_metrics from PATH or LIGGGHTS=..., DRUM_METRICS=....
+
+Needs: python3-matplotlib (tools/harness), mpirun (openmpi-bin); liggghts, drum_metrics.
 """
 
 import re

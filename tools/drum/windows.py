@@ -11,6 +11,8 @@ series, window means as steps).
   tools/drum/windows.py --rpm 21 --out docs/drum/walls_21rpm \\
       cylinder=docs/drum/history_21rpm_settled/21rpm/partial/metrics_cache.csv \\
       moving=docs/drum/walls_21rpm_moving/21rpm/partial/metrics_cache.csv
+
+Needs: python3-matplotlib (tools/harness); drum_metrics.
 """
 
 import argparse

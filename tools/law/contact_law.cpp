@@ -1,5 +1,6 @@
 // contact_law: every number of the contact law a script needs, from the core
-// (so no script re-derives physics) and from inputs/materials.in (Table 3.1).
+// (so no script re-derives physics) and from a materials file (default:
+// inputs/materials.in, Table 3.1; see materials.h for where it is looked for).
 // Type 1 is the beads (mass from bead_d, bead_rho), type 2 the drum (a wall,
 // mass 0). Thesis conventions: bead-bead pairs take bead_*, pairs with the
 // drum take drum_*.
@@ -23,20 +24,31 @@
 //       CSV: single binary collisions over N start phases at each tc/dt,
 //       plain Pournin coefficients, exactRestitution and exactCollision:
 //       the worst and the mean relative error of en and (sticking) et.
-//   contact_law coefficients [--materials F] [--meff M]
-//       CSV per type pair: tc, en, et, mu and kn, cn, kt, ct per unit meff
-//       (or for the effective mass M).
+//   contact_law coefficients [--materials F | --table T | --tc --en --et --mu --d --rho] [--meff M] [--fix]
+//       the calculator, for any materials. CSV per type pair: tc, en, et, mu,
+//       the pair's meff, kn, cn, kt, ct for it (or for --meff M) and per unit
+//       meff, and the timestep guard of `model viscoelastic`; with --fix
+//       instead the `fix property/global` lines that ask LIGGGHTS for those
+//       materials, and the run's guard. The type pairs: the materials file's
+//       (beads and drum); with any of --tc ... --rho one type of beads (the
+//       values not given from the file's bead_*); or a --table file:
+//           type I D RHO               (a sphere type: diameter [m], density [kg/m^3])
+//           type I wall                (a wall, e.g. the drum: no mass)
+//           pair I J TC EN ET MU       (every pair of the types once)
 #include <CLI/CLI.hpp>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cli.h"        // tools/common: --version, usage errors
 #include "core/viscoelastic.h"
 #include "materials.h"  // tools/common: the one reader of inputs/materials.in
 #include "messages.h"
@@ -44,8 +56,6 @@
 namespace {
 
 using namespace viscoelastic;
-
-constexpr int kTypes = 2;  // 1 beads, 2 the drum
 
 // The variables of a materials file, and where they came from.
 class Materials {
@@ -63,10 +73,40 @@ private:
     std::map<std::string, double> values_;
 };
 
+using tools::check;
+using tools::kNonNegative;
+using tools::kPositive;
+using tools::kRestitution;
+
+std::string text(double v)
+{
+    char s[32];
+    std::snprintf(s, sizeof s, "%.12g", v);
+    return s;
+}
+
+// Throws "where: name must be ..., not v" unless v follows the rule.
+void require(const tools::Rule& rule, double v, const std::string& name, const std::string& where)
+{
+    if (!rule.ok(v)) throw std::runtime_error(where + ": " + name + " must be " + rule.what + ", not " + text(v));
+}
+
+void requireValid(const ContactParameters& p, const std::string& where)
+{
+    require(kPositive, p.tc, "tc", where);
+    require(kRestitution, p.en, "en", where);
+    require(kRestitution, p.et, "et", where);
+    require(kNonNegative, p.mu, "mu", where);
+}
+
+// N types and every pair of them (symmetric, as LIGGGHTS' peratomtypepair
+// matrices are).
 struct TypePairs {
-    std::array<ContactParameters, kTypes * kTypes> p;  // row by row
-    std::array<double, kTypes> mass;                   // per type [kg]; 0: a wall
-    const ContactParameters& operator()(int i, int j) const { return p[i * kTypes + j]; }
+    int n = 0;
+    std::vector<ContactParameters> p;  // n x n, row by row
+    std::vector<double> mass;          // per type [kg]; 0: a wall
+    std::vector<std::string> what;     // per type, for the --fix lines' comment
+    const ContactParameters& operator()(int i, int j) const { return p[i * n + j]; }
 };
 
 double beadMass(const Materials& m)
@@ -74,19 +114,106 @@ double beadMass(const Materials& m)
     return sphereMass(m["bead_d"], m["bead_rho"]);
 }
 
+std::string sphere(double d, double rho)
+{
+    return "beads of " + text(d) + " m, " + text(rho) + " kg/m^3";
+}
+
 // Table 3.1 with the thesis conventions, or en = et = `uniform` everywhere.
 TypePairs typePairs(const Materials& m, std::optional<double> uniform)
 {
     const ContactParameters bead{m["bead_tc"], m["bead_en"], m["bead_et"], m["bead_mu"]};
     const ContactParameters drum{m["drum_tc"], m["drum_en"], m["drum_et"], m["drum_mu"]};
+    requireValid(bead, "bead_*");
+    requireValid(drum, "drum_*");
     TypePairs t;
-    for (int i = 0; i < kTypes; ++i)
-        for (int j = 0; j < kTypes; ++j) {
+    t.n = 2;
+    for (int i = 0; i < t.n; ++i)
+        for (int j = 0; j < t.n; ++j) {
             ContactParameters p = (i == 0 && j == 0) ? bead : drum;
             if (uniform) p = {bead.tc, *uniform, *uniform, p.mu};
-            t.p[i * kTypes + j] = p;
+            t.p.push_back(p);
         }
     t.mass = {beadMass(m), 0.0};
+    t.what = {sphere(m["bead_d"], m["bead_rho"]), "the drum (a wall)"};
+    return t;
+}
+
+// One type of beads: bead-bead contacts alone.
+TypePairs oneType(const ContactParameters& p, double d, double rho)
+{
+    requireValid(p, "beads");
+    require(kPositive, d, "d", "beads");
+    require(kPositive, rho, "rho", "beads");
+    return {1, {p}, {sphereMass(d, rho)}, {sphere(d, rho)}};
+}
+
+// A --table file (see the header): `type` and `pair` lines, `#` comments.
+TypePairs readTable(const std::string& path)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open the table");
+    std::map<int, std::pair<double, std::string>> types;     // number: mass (0: a wall), what
+    std::map<std::pair<int, int>, ContactParameters> pairs;  // (i, j), i <= j
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        const std::string where = path + ":" + std::to_string(number);
+        std::istringstream words(line.substr(0, line.find('#')));
+        std::vector<std::string> w;
+        for (std::string x; words >> x;) w.push_back(x);
+        if (w.empty()) continue;
+        // words 1 to n as numbers (into v); false unless all of them are
+        std::vector<double> v;
+        const auto numbers = [&](size_t n) {
+            for (size_t k = 1; k <= n; ++k) {
+                char* end = nullptr;
+                v.push_back(std::strtod(w[k].c_str(), &end));
+                if (end == w[k].c_str() || *end != '\0') return false;
+            }
+            return true;
+        };
+        const bool wall = w.size() == 3 && w[0] == "type" && w[2] == "wall";
+        const bool good = (w[0] == "type" && ((wall && numbers(1)) || (w.size() == 4 && numbers(3)))) ||
+                          (w[0] == "pair" && w.size() == 7 && numbers(6));
+        const auto integer = [](double x) { return x >= 1 && x == std::floor(x); };
+        if (!good || !integer(v[0]) || (w[0] == "pair" && !integer(v[1])))
+            throw std::runtime_error(where + ": expected `type I D RHO`, `type I wall` or `pair I J TC EN ET MU` "
+                                     "(types numbered from 1), got: " + line);
+        const int i = static_cast<int>(v[0]);
+        if (w[0] == "type") {
+            if (!wall) require(kPositive, v[1], "d", where), require(kPositive, v[2], "rho", where);
+            const auto type = wall ? std::make_pair(0.0, std::string("a wall"))
+                                   : std::make_pair(sphereMass(v[1], v[2]), sphere(v[1], v[2]));
+            if (!types.emplace(i, type).second) throw std::runtime_error(where + ": type " + w[1] + " given twice");
+            continue;
+        }
+        const int j = static_cast<int>(v[1]);
+        const ContactParameters p{v[2], v[3], v[4], v[5]};
+        requireValid(p, where);
+        if (!pairs.emplace(std::minmax(i, j), p).second)
+            throw std::runtime_error(where + ": pair " + w[1] + " " + w[2] + " given twice");
+    }
+    TypePairs t;
+    t.n = static_cast<int>(types.size());
+    if (t.n == 0) throw std::runtime_error(path + ": no `type` lines");
+    for (int i = 1; i <= t.n; ++i) {
+        if (!types.count(i))
+            throw std::runtime_error(path + ": the types must be numbered 1 to " + std::to_string(t.n) +
+                                     ": no type " + std::to_string(i));
+        t.mass.push_back(types[i].first);
+        t.what.push_back(types[i].second);
+    }
+    for (const auto& [ij, p] : pairs)
+        if (ij.second > t.n) throw std::runtime_error(path + ": pair names type " + std::to_string(ij.second) +
+                                                      ", which has no `type` line");
+    for (int i = 1; i <= t.n; ++i)
+        for (int j = 1; j <= t.n; ++j) {
+            const auto it = pairs.find(std::minmax(i, j));
+            if (it == pairs.end())
+                throw std::runtime_error(path + ": no `pair " + std::to_string(std::min(i, j)) + " " +
+                                         std::to_string(std::max(i, j)) + " ...` line");
+            t.p.push_back(it->second);
+        }
     return t;
 }
 
@@ -95,11 +222,18 @@ enum class Law { nominal, exactRestitution, exactCollision };
 
 Law parseLaw(const std::string& s)
 {
-    if (s == "nominal") return Law::nominal;
     if (s == "exactRestitution") return Law::exactRestitution;
     if (s == "exactCollision") return Law::exactCollision;
-    throw std::runtime_error("--law must be nominal, exactRestitution or exactCollision, not '" + s + "'");
+    return Law::nominal;  // the option's check admits these three only
 }
+
+const CLI::Validator kLawCheck(
+    [](std::string& s) -> std::string {
+        return s == "nominal" || s == "exactRestitution" || s == "exactCollision"
+                   ? ""
+                   : "must be nominal, exactRestitution or exactCollision, not '" + s + "'";
+    },
+    "nominal|exactRestitution|exactCollision");
 
 // What `law` applies for type pair p at dt, per unit meff; nullopt where the
 // law has no solution (`why` says why).
@@ -122,22 +256,21 @@ std::optional<UnitCoefficients> applied(const ContactParameters& p, Law law, dou
                                stepLaw(osc->tangential.k, osc->tangential.c, dt, false));
 }
 
-int stock(const Materials& m, std::optional<double> uniform, Law law, double dt, bool limitForce)
+int stock(const TypePairs& t, Law law, double dt, bool limitForce)
 {
-    const TypePairs t = typePairs(m, uniform);
-    std::array<Coefficients, kTypes * kTypes> c;
-    for (int i = 0; i < kTypes; ++i)
-        for (int j = 0; j < kTypes; ++j) {
+    std::vector<Coefficients> c;
+    for (int i = 0; i < t.n; ++i)
+        for (int j = 0; j < t.n; ++j) {
             std::string why;
             const std::optional<UnitCoefficients> u = applied(t(i, j), law, dt, limitForce, &why);
             if (!u) {
                 std::fprintf(stderr, "contact_law: type pair (%d,%d): %s\n", i + 1, j + 1, why.c_str());
                 return 1;
             }
-            c[i * kTypes + j] = scaled(*u, effectiveMass(t.mass[i], t.mass[j]));
+            c.push_back(scaled(*u, effectiveMass(t.mass[i], t.mass[j])));
         }
     auto print = [&](const char* name, double Coefficients::*field) {
-        std::printf("fix %s all property/global %s peratomtypepair %d", name, name, kTypes);
+        std::printf("fix %s all property/global %s peratomtypepair %d", name, name, t.n);
         for (const Coefficients& k : c) std::printf(" %.17g", k.*field);
         std::printf("\n");
     };
@@ -175,17 +308,45 @@ int limit(double tc, double en, double et, std::optional<double> at, Law law)
     return 0;
 }
 
-int coefficients(const Materials& m, std::optional<double> meff)
+// The calculator: per type pair i <= j, its request, meff, the constants for
+// that meff (or `meff`, if > 0) and per unit meff, and the guard (Pournin's
+// coefficients per unit meff depend on tc, en, et alone, so the guard does
+// not depend on the masses); or, with `fix`, what to paste into an input.
+int coefficients(const TypePairs& t, double meff, bool fix)
 {
-    const TypePairs t = typePairs(m, std::nullopt);
-    std::printf("i,j,tc_s,en,et,mu,%s\n", meff ? "kn_N_m,cn_N_s_m,kt_N_m,ct_N_s_m"
-                                             : "kn_per_meff_1_s2,cn_per_meff_1_s,kt_per_meff_1_s2,ct_per_meff_1_s");
-    for (int i = 0; i < kTypes; ++i)
-        for (int j = i; j < kTypes; ++j) {
+    if (fix) {
+        int gi = 0, gj = 0;
+        for (int i = 0; i < t.n; ++i)
+            for (int j = i; j < t.n; ++j)
+                if (stableTimestep(t(i, j)) < stableTimestep(t(gi, gj))) gi = i, gj = j;
+        std::printf("# model viscoelastic");
+        for (int i = 0; i < t.n; ++i) std::printf("; type %d: %s", i + 1, t.what[i].c_str());
+        std::printf("\n");
+        auto print = [&](int id, const char* name, double ContactParameters::*field) {
+            std::printf("fix m%d all property/global %-32s peratomtypepair %d", id, name, t.n);
+            for (const ContactParameters& p : t.p) std::printf(" %.12g", p.*field);
+            std::printf("\n");
+        };
+        print(1, "contactDuration", &ContactParameters::tc);
+        print(2, "coefficientRestitution", &ContactParameters::en);
+        print(3, "coefficientRestitutionTangential", &ContactParameters::et);
+        print(4, "coefficientFriction", &ContactParameters::mu);
+        const double guard = stableTimestep(t(gi, gj));
+        std::printf("# the model's timestep guard: timestep <= %.6g s (tc/%.4g, type pair (%d,%d))\n", guard,
+                    t(gi, gj).tc / guard, gi + 1, gj + 1);
+        return 0;
+    }
+    std::printf("i,j,tc_s,en,et,mu,meff_kg,kn_N_m,cn_N_s_m,kt_N_m,ct_N_s_m,"
+                "kn_per_meff_1_s2,cn_per_meff_1_s,kt_per_meff_1_s2,ct_per_meff_1_s,guard_s\n");
+    for (int i = 0; i < t.n; ++i)
+        for (int j = i; j < t.n; ++j) {
             const ContactParameters& p = t(i, j);
-            const Coefficients c = scaled(pourninUnitCoefficients(p), meff ? *meff : 1.0);
-            std::printf("%d,%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", i + 1, j + 1, p.tc, p.en, p.et,
-                        p.mu, c.kn, c.cn, c.kt, c.ct);
+            const double m = meff > 0 ? meff : effectiveMass(t.mass[i], t.mass[j]);
+            const UnitCoefficients u = pourninUnitCoefficients(p);
+            const Coefficients c = scaled(u, m);
+            std::printf("%d,%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n",
+                        i + 1, j + 1, p.tc, p.en, p.et, p.mu, m, c.kn, c.cn, c.kt, c.ct, u.kn, u.cn, u.kt, u.ct,
+                        stableTimestep(p));
         }
     return 0;
 }
@@ -237,51 +398,76 @@ int main(int argc, char** argv)
 {
     CLI::App app{"Numbers of the viscoelastic contact law (Pournin coefficients, Table 3.1)"};
     app.require_subcommand(1);
-    std::string path = "inputs/materials.in";
-    auto addMaterials = [&](CLI::App* sub) {
-        sub->add_option("--materials", path, "LIGGGHTS file of `variable NAME equal VALUE` lines")
-            ->capture_default_str();
-    };
+    std::string path;  // empty: findMaterials' lookup
+    auto addMaterials = [&](CLI::App* sub) { sub->add_option("--materials", path, materialsHelp()); };
+    const auto materials = [&] { return Materials(findMaterials(path)); };
 
     CLI::App* stockCmd = app.add_subcommand("stock", "stock hooke/stiffness properties with our constants");
     addMaterials(stockCmd);
     double uniform = 0.0, dt = 0.0;
     bool exact = false, limitForce = false;
     CLI::Option* uniformOpt =
-        stockCmd->add_option("--uniform", uniform, "en = et = EN for every type pair")->check(CLI::Range(1e-300, 1.0));
-    CLI::Option* dtOpt = stockCmd->add_option("--dt", dt, "timestep [s]")->check(CLI::PositiveNumber);
+        stockCmd->add_option("--uniform", uniform, "en = et = EN for every type pair")->check(check(kRestitution));
+    CLI::Option* dtOpt = stockCmd->add_option("--dt", dt, "timestep [s]")->check(check(kPositive));
     std::string stockLaw = "nominal";
     CLI::Option* exactOpt = stockCmd->add_flag("--exact", exact, "the exactRestitution coefficients (--law exactRestitution)")
                                 ->needs(dtOpt);
     stockCmd->add_option("--law", stockLaw, "nominal, exactRestitution or exactCollision "
-                                                                  "(its step law: a contact under way)")
-                              ->needs(dtOpt)->excludes(exactOpt)->capture_default_str();
+                                            "(its step law: a contact under way)")
+        ->check(kLawCheck)->needs(dtOpt)->excludes(exactOpt)->capture_default_str();
     stockCmd->add_flag("--limit-force", limitForce, "limitForce on")->needs(dtOpt);
 
     CLI::App* limitCmd = app.add_subcommand("limit", "binary stability limit and guard, CSV");
     addMaterials(limitCmd);
     double en = 0.0, et = 0.0, tc = 0.0;
-    limitCmd->add_option("--en", en, "normal restitution")->required()->check(CLI::Range(1e-300, 1.0));
+    limitCmd->add_option("--en", en, "normal restitution")->required()->check(check(kRestitution));
     CLI::Option* etOpt = limitCmd->add_option("--et", et, "tangential restitution (default: en)")
-                             ->check(CLI::Range(1e-300, 1.0));
+                             ->check(check(kRestitution));
     CLI::Option* tcOpt = limitCmd->add_option("--tc", tc, "contact duration [s] (default: bead_tc)")
-                             ->check(CLI::PositiveNumber);
+                             ->check(check(kPositive));
     double at = 0.0;
     CLI::Option* atOpt = limitCmd->add_option("--at", at,
                                               "dt/tc: also the stiffening Z at which the guard's form gives it")
-                             ->check(CLI::PositiveNumber);
+                             ->check(check(kPositive));
     std::string limitLaw = "nominal";
     limitCmd->add_option("--law", limitLaw, "the coefficients applied: nominal, exactRestitution or exactCollision")
-        ->capture_default_str();
+        ->check(kLawCheck)->capture_default_str();
 
     CLI::App* massCmd = app.add_subcommand("bead-mass", "mass of one bead [kg]");
     addMaterials(massCmd);
 
-    CLI::App* coeffCmd = app.add_subcommand("coefficients", "kn, cn, kt, ct per type pair, CSV");
+    CLI::App* coeffCmd = app.add_subcommand(
+        "coefficients", "per type pair kn, cn, kt, ct (for the pair's meff and per unit meff) and the timestep "
+                        "guard, CSV; or the `fix property/global` lines (--fix). The pairs: the materials file's, "
+                        "one type of beads (any of --tc --en --et --mu --d --rho; the rest from the file's bead_*), "
+                        "or --table");
     addMaterials(coeffCmd);
-    double meff = 0.0;
-    CLI::Option* meffOpt = coeffCmd->add_option("--meff", meff, "effective mass [kg]: absolute constants")
-                               ->check(CLI::PositiveNumber);
+    double meff = 0.0;  // 0: each pair's
+    coeffCmd->add_option("--meff", meff, "effective mass [kg] instead of each pair's")->check(check(kPositive));
+    ContactParameters bead{};
+    double beadD = 0.0, beadRho = 0.0;
+    std::string table;
+    bool fix = false;
+    // an option of the one bead type: its value, or the file's variable
+    struct BeadOption {
+        CLI::Option* option;
+        double* value;
+        const char* variable;
+    };
+    const std::vector<BeadOption> beadOptions{
+        {coeffCmd->add_option("--tc", bead.tc, "contact duration [s]")->check(check(kPositive)), &bead.tc, "bead_tc"},
+        {coeffCmd->add_option("--en", bead.en, "normal restitution")->check(check(kRestitution)), &bead.en, "bead_en"},
+        {coeffCmd->add_option("--et", bead.et, "tangential restitution")->check(check(kRestitution)), &bead.et,
+         "bead_et"},
+        {coeffCmd->add_option("--mu", bead.mu, "friction coefficient")->check(check(kNonNegative)), &bead.mu,
+         "bead_mu"},
+        {coeffCmd->add_option("--d", beadD, "bead diameter [m]")->check(check(kPositive)), &beadD, "bead_d"},
+        {coeffCmd->add_option("--rho", beadRho, "bead density [kg/m^3]")->check(check(kPositive)), &beadRho,
+         "bead_rho"}};
+    CLI::Option* tableOpt = coeffCmd->add_option(
+        "--table", table, "the types and pairs from this file: `type I D RHO`, `type I wall`, `pair I J TC EN ET MU`");
+    for (const BeadOption& b : beadOptions) tableOpt->excludes(b.option);
+    coeffCmd->add_flag("--fix", fix, "print the `fix property/global` lines for LIGGGHTS instead of the CSV");
 
     CLI::App* singleCmd = app.add_subcommand("single", "single-collision errors over start phases, CSV");
     addMaterials(singleCmd);
@@ -289,34 +475,46 @@ int main(int argc, char** argv)
     bool sLimit = false;
     std::vector<double> ratios{4, 5, 7.3, 10, 15, 20, 30, 50, 81, 100};
     int phases = 256;
-    singleCmd->add_option("--en", sEn, "normal restitution")->required()->check(CLI::Range(1e-300, 1.0));
+    singleCmd->add_option("--en", sEn, "normal restitution")->required()->check(check(kRestitution));
     CLI::Option* sEtOpt = singleCmd->add_option("--et", sEt, "tangential restitution (default: en)")
-                              ->check(CLI::Range(1e-300, 1.0));
+                              ->check(check(kRestitution));
     CLI::Option* sTcOpt = singleCmd->add_option("--tc", sTc, "contact duration [s] (default: bead_tc)")
-                              ->check(CLI::PositiveNumber);
+                              ->check(check(kPositive));
     singleCmd->add_flag("--limit-force", sLimit, "limitForce on");
     singleCmd->add_option("--ratios", ratios, "tc/dt values")->delimiter(',')->capture_default_str();
-    singleCmd->add_option("--phases", phases, "start phases (k + 0.5) / N")->check(CLI::PositiveNumber)
+    singleCmd->add_option("--phases", phases, "start phases (k + 0.5) / N")->check(check(kPositive))
         ->capture_default_str();
 
-    CLI11_PARSE(app, argc, argv);
+    if (const std::optional<int> done = tools::parse(app, "contact_law", argc, argv)) return *done;
     try {
         if (*stockCmd)
-            return stock(Materials(path), *uniformOpt ? std::optional<double>(uniform) : std::nullopt,
+            return stock(typePairs(materials(), *uniformOpt ? std::optional<double>(uniform) : std::nullopt),
                          exact ? Law::exactRestitution : parseLaw(stockLaw), dt, limitForce);
         if (*limitCmd)
-            return limit(*tcOpt ? tc : Materials(path)["bead_tc"], en, *etOpt ? et : en,
+            return limit(*tcOpt ? tc : materials()["bead_tc"], en, *etOpt ? et : en,
                          *atOpt ? std::optional<double>(at) : std::nullopt, parseLaw(limitLaw));
         if (*singleCmd)
-            return single({*sTcOpt ? sTc : Materials(path)["bead_tc"], sEn, *sEtOpt ? sEt : sEn, 0.0}, sLimit, ratios,
+            return single({*sTcOpt ? sTc : materials()["bead_tc"], sEn, *sEtOpt ? sEt : sEn, 0.0}, sLimit, ratios,
                           phases);
         if (*massCmd) {
-            std::printf("%.17g\n", beadMass(Materials(path)));
+            std::printf("%.17g\n", beadMass(materials()));
             return 0;
         }
-        return coefficients(Materials(path), *meffOpt ? std::optional<double>(meff) : std::nullopt);
+        if (!table.empty()) return coefficients(readTable(table), meff, fix);
+        bool anyGiven = false, allGiven = true;
+        for (const BeadOption& b : beadOptions) {
+            anyGiven = anyGiven || b.option->count() > 0;
+            allGiven = allGiven && b.option->count() > 0;
+        }
+        if (!anyGiven) return coefficients(typePairs(materials(), std::nullopt), meff, fix);
+        if (!allGiven) {  // only then is a materials file needed
+            const Materials m = materials();
+            for (const BeadOption& b : beadOptions)
+                if (!b.option->count()) *b.value = m[b.variable];
+        }
+        return coefficients(oneType(bead, beadD, beadRho), meff, fix);
     } catch (const std::runtime_error& e) {
         std::fprintf(stderr, "contact_law: %s\n", e.what());
-        return 2;
+        return 1;
     }
 }
