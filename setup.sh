@@ -9,7 +9,7 @@ sudo=""
 $sudo apt-get update
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends \
   build-essential cmake liggghts libliggghts-dev openmpi-bin libopenmpi-dev shellcheck \
-  libeigen3-dev libboost-dev libcli11-dev libgtest-dev libbenchmark-dev valgrind gnuplot-nox \
+  libeigen3-dev libboost-dev libcli11-dev libgtest-dev libbenchmark-dev valgrind \
   python3 python3-matplotlib python3-numpy python3-scipy \
   paraview paraview-dev python3-paraview xvfb xauth
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -498,6 +499,49 @@ TEST(DrumMetrics, OlderMetricsCacheIsUpgraded)
     std::ifstream log(dir / "out.txt");
     const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("has other columns"), std::string::npos) << text;
+    fs::remove_all(dir);
+}
+
+// `series` and `table` draw their charts (tools/plot.py: this source tree's,
+// for a binary of the build tree). A chart that cannot be drawn (here: a
+// directory where the PNG goes) is a warning: the CSV files are written and
+// the tool succeeds.
+TEST(DrumMetrics, SeriesAndTableDrawTheirCharts)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "drum_metrics_charts";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const double omega = 21 * 2 * M_PI / 60;
+    writeBed(moving(Motion::sliding, omega, 0.3), (dir / "b_1000.vtp").string());
+    writeBed(moving(Motion::sliding, omega, 0.7), (dir / "b_2000.vtp").string());
+    const std::string log = (dir / "out.txt").string();
+    const auto run = [&](const std::string& args) {
+        const int status = std::system((std::string(DRUM_METRICS) + " " + args + " > " + log + " 2>&1").c_str());
+        std::ifstream in(log);
+        return std::make_pair(status, std::string(std::istreambuf_iterator<char>(in), {}));
+    };
+    const std::string prefix = (dir / "b").string();
+    int status = 0;
+    std::string text;
+    std::tie(status, text) = run("series --prefix " + prefix + " --dt 1e-4 --rpm 21");
+    ASSERT_EQ(status, 0) << text;
+    EXPECT_GT(fs::file_size(dir / "b_metrics.png"), 10000u) << text;
+    EXPECT_EQ(text.find("WARNING"), std::string::npos) << text;
+    std::tie(status, text) = run("table --out " + (dir / "t").string() + " " + prefix + "_average.csv");
+    ASSERT_EQ(status, 0) << text;
+    EXPECT_GT(fs::file_size(dir / "t.png"), 10000u) << text;
+    EXPECT_NE(text.find("t.png"), std::string::npos) << text;
+
+    fs::remove(dir / "t.png");
+    fs::remove(dir / "t.csv");
+    fs::create_directory(dir / "t.png");
+    std::tie(status, text) = run("table --out " + (dir / "t").string() + " " + prefix + "_average.csv");
+    EXPECT_EQ(status, 0) << text;
+    EXPECT_NE(text.find("drum_metrics: WARNING: chart " + (dir / "t.png").string() + " not drawn"), std::string::npos)
+        << text;
+    EXPECT_TRUE(fs::is_regular_file(dir / "t.csv"));
+    EXPECT_EQ(text.find(", " + (dir / "t.png").string()), std::string::npos) << text;  // not listed as written
     fs::remove_all(dir);
 }
 

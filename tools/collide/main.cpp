@@ -19,9 +19,9 @@
 #include <sstream>
 
 #include "cli.h"
-#include "gnuplot.h"
 #include "materials.h"
 #include "messages.h"
+#include "plot.h"
 #include "runner.h"
 
 using namespace collide;
@@ -290,20 +290,10 @@ int runSweepDt(Options& o, const std::vector<double>& ratios)
     if (oblique) std::printf("observed order of the tangential restitution error: %.2f\n", slope(logDtT, logErrT));
     const std::string csvFile = o.csv.empty() ? "sweep_dt.csv" : o.csv;
     std::ofstream(csvFile) << csv.str();
-    if (!o.png.empty()) {
-        std::ostringstream gp;
-        gp << "set terminal pngcairo size 900,600\nset output '" << o.png << "'\nset datafile separator ','\n"
-           << "set logscale xy\nset xlabel 'tc / dt'\nset ylabel '|relative error|'\nset grid\n"
-           << "set title \"" << describe(o.c, true, false) << "\" font ',9'\nset key top right\n"
-           << "plot '" << csvFile << "' every ::1 using 1:(abs($4)) with linespoints lw 2 title 'restitution (LIGGGHTS)', "
-           << "'' every ::1 using 1:(abs($5/" << ref.outcome.restitution
-           << "-1)) with lines dt 2 title 'restitution (predicted recurrence)', "
-           << "'' every ::1 using 1:(abs($7)) with linespoints lw 2 title 'contact duration'";
-        if (oblique) gp << ", '' every ::1 using 1:(abs($9)) with linespoints lw 2 title 'tangential restitution'";
-        gp << "\n";
-        gnuplot(gp.str());
+    // tools/plot.py sweep-dt: the |relative errors| against tc/dt, log-log
+    if (!o.png.empty() && tools::plot("collide", "sweep-dt", csvFile, o.png,
+                                      {"--title", describe(o.c, true, false), "--tangential", oblique ? "on" : "off"}))
         std::printf("chart: %s\n", o.png.c_str());
-    }
     return 0;
 }
 
@@ -329,18 +319,13 @@ int runLawMap(Options& o, const std::vector<double>& mus, const std::vector<doub
         }
     csv.close();
     if (!o.png.empty()) {
-        std::ostringstream gp;
-        gp << "set terminal pngcairo size 900,600\nset output '" << o.png << "'\nset datafile separator ','\n"
-           << "set grid\nset xlabel 'incidence angle from the normal [deg]'\nset ylabel 'tangential restitution'\n"
-           << "set title \"the continuous law: " << name(o.c.geometry) << ", tangential " << name(o.c.tangential)
-           << ", limitForce " << (o.c.limitForce ? "on" : "off") << ", en " << o.c.params.en << ", et "
-           << o.c.params.et << ", |v| = " << speed << " m/s\" font ',10'\nset key bottom left\nplot ";
-        for (size_t k = 0; k < mus.size(); ++k)
-            gp << (k ? ", " : "") << "'" << csvFile << "' every ::1 using 2:($1 == " << mus[k]
-               << " ? $3 : NaN) with linespoints lw 2 title 'mu " << mus[k] << "'";
-        gp << ", " << o.c.params.et << " with lines dt 2 lc 'black' title 'requested et'\n";
-        gnuplot(gp.str());
-        std::printf("chart: %s\n", o.png.c_str());
+        // tools/plot.py law-map: a line per mu against the angle, the requested et dashed
+        std::ostringstream title;
+        title << "the continuous law: " << name(o.c.geometry) << ", tangential " << name(o.c.tangential)
+              << ", limitForce " << (o.c.limitForce ? "on" : "off") << ", en " << o.c.params.en << ", et "
+              << o.c.params.et << ", |v| = " << speed << " m/s";
+        if (tools::plot("collide", "law-map", csvFile, o.png, {"--title", title.str()}))
+            std::printf("chart: %s\n", o.png.c_str());
     }
     return 0;
 }
@@ -388,20 +373,11 @@ int runSweepAngle(Options& o, const std::vector<double>& angles, double speed)
             fine << a << "," << r.tangentialRestitution << "," << r.spin1 << "," << r.reboundAngle << "\n";
         }
         fine.close();
-        std::ostringstream gp;
-        gp << "set terminal pngcairo size 1500,500\nset output '" << o.png << "'\nset datafile separator ','\n"
-           << "set multiplot layout 1,3 title \"" << describe(o.c, false) << ", |v| = " << speed
-           << " m/s\" font ',10'\nset grid\nset xlabel 'incidence angle from the normal [deg]'\nset key top center\n";
-        const char* panels[][3] = {{"tangential restitution", "2", "3"},
-                                   {"rebound spin [rad/s]", "3", "5"},
-                                   {"rebound angle [deg]", "4", "7"}};
-        for (auto& p : panels)
-            gp << "set ylabel '" << p[0] << "'\nplot '" << fineFile << "' every ::1 using 1:" << p[1]
-               << " with lines lw 2 title 'reference', '" << csvFile << "' every ::1 using 1:" << p[2]
-               << " with points pt 7 ps 1.3 title 'LIGGGHTS'\n";
-        gp << "unset multiplot\n";
-        gnuplot(gp.str());
-        std::printf("chart: %s\n", o.png.c_str());
+        // tools/plot.py sweep-angle: et, spin and rebound angle, LIGGGHTS' points on the reference's line
+        std::ostringstream title;
+        title << describe(o.c, false) << ", |v| = " << speed << " m/s";
+        if (tools::plot("collide", "sweep-angle", csvFile, o.png, {"--reference", fineFile, "--title", title.str()}))
+            std::printf("chart: %s\n", o.png.c_str());
     }
     return 0;
 }

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Regenerates docs/drum/README.md and docs/drum/speeds_and_ramp.md from the drum studies in post/.
+"""Regenerates docs/drum/reduced_scene.md and docs/drum/speeds_and_ramp.md (the first, transient runs on the
+6 mm slab, superseded by the thesis-scale studies) from those studies in post/.
 
 Inputs (made by tools/drum/study.py; each study's settings and command from post/NAME/study.json;
 they ran with drum.in's defaults then, which `V` below repeats: V = --var dt 1e-5 --var exact off
@@ -117,7 +118,7 @@ class Collector:
     def absent(self, what):
         return f"*(not collected: {what} missing)*"
 
-    # ---- docs/drum/README.md ------------------------------------------------------------
+    # ---- docs/drum/reduced_scene.md ------------------------------------------------------------
     def readme(self):
         a = self.args
         s, d = self.study(a.sweep)
@@ -297,7 +298,7 @@ def main(argv=None):
         for source, name in c.copies:
             if source.exists():
                 shutil.copyfile(source, args.out / name)
-        for doc, values in (("README.md", readme), ("speeds_and_ramp.md", ramp)):
+        for doc, values in (("reduced_scene.md", readme), ("speeds_and_ramp.md", ramp)):
             (args.out / doc).write_text(fill(doc + ".in", values))
             harness.say(WHO, f"wrote {args.out / doc}")
     return 0

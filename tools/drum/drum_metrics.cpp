@@ -29,8 +29,8 @@
 #include <sstream>
 
 #include "cli.h"
-#include "gnuplot.h"
 #include "metrics.h"
+#include "plot.h"
 
 namespace fs = std::filesystem;
 
@@ -99,31 +99,16 @@ double parseNumber(const std::string& cell, const std::string& file)
     }
 }
 
-// One chart panel per metric of the table: column `x` of `csv` against the
-// metric's column, with its standard-error column as error bars when
-// `errors`. `hasData[i]`: metric i has a finite value (gnuplot refuses to plot
-// a column of nan). `extra`: gnuplot commands before the panels.
-void plotMetrics(const std::string& png, const std::string& csv, const std::string& title, const std::string& x,
-                 const std::string& xlabel, bool errors, const std::vector<bool>& hasData, const std::string& extra)
+// The chart of a CSV of this tool (tools/plot.py KIND: drum-series or
+// drum-table): one panel per metric, each axis its label and unit from the
+// metric table; `options`: plot.py's others. True if drawn (else a warning).
+bool plotMetrics(const std::string& kind, const std::string& csv, const std::string& png, const std::string& title,
+                 std::vector<std::string> options = {})
 {
-    const int cols = 3, rows = (static_cast<int>(table().size()) + cols - 1) / cols;
-    std::ostringstream gp;
-    gp << "set terminal pngcairo size " << 600 * cols << "," << 400 * rows << " noenhanced\nset output '" << png
-       << "'\nset datafile separator ','\nset multiplot layout " << rows << "," << cols << " title '" << title
-       << "'\nset grid\nset key off\nset xlabel '" << xlabel << "'\n"
-       << (errors ? "set offsets graph 0.05, graph 0.05, graph 0.1, graph 0.1\n" : "") << extra;
-    for (size_t i = 0; i < table().size(); ++i) {
-        const drum::Metric& m = table()[i];
-        gp << "set ylabel '" << m.label << " [" << m.unit << "]'\n";
-        if (!hasData[i]) {
-            gp << "set label 1 'no values' at graph 0.5,0.5 center\nplot [0:1][0:1] 2\nunset label 1\n";
-            continue;
-        }
-        gp << "plot '" << csv << "' using '" << x << "':'" << m.column() << "'";
-        gp << (errors ? ":'" + m.seColumn() + "' with yerrorlines pt 7\n" : std::string(" with lines\n"));
-    }
-    gp << "unset multiplot\n";
-    gnuplot(gp.str());
+    options.insert(options.end(), {"--title", title});
+    for (const drum::Metric& m : table())
+        options.insert(options.end(), {"--label", m.column() + "=" + m.label + " [" + m.unit + "]"});
+    return tools::plot("drum_metrics", kind, csv, png, options);
 }
 
 // The finite values of v[from:] (a snapshot where a metric is undefined,
@@ -280,13 +265,11 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
     for (const drum::Metric& m : table()) header.push_back(m.column());
     writeRow(csv, header);
     std::vector<std::vector<double>> values(table().size());
-    std::vector<bool> hasData(table().size(), false);
     for (const drum::BedMetrics& m : ms) {
         std::vector<std::string> row = {number(m.time), std::to_string(m.beads), std::to_string(m.wallContacts)};
         for (size_t i = 0; i < table().size(); ++i) {
             row.push_back(number(m.values[i]));
             values[i].push_back(m.values[i]);
-            hasData[i] = hasData[i] || std::isfinite(m.values[i]);
         }
         writeRow(csv, row);
     }
@@ -330,12 +313,11 @@ int series(const std::string& prefix, const std::string& outPrefix, double dt, d
     const std::string title = fs::path(prefix).filename().string() + ": " + number(rpm) + " rpm" +
                               (!steady ? ", all snapshots averaged"
                                        : start >= 0 ? ", dashed: steady state" : ", not steady yet");
-    const std::string arrow =
-        steady && start >= 0 ? "set arrow 1 from " + number(tSteady) + ", graph 0 to " + number(tSteady) +
-                                   ", graph 1 nohead dt 2\n"
-                             : "";
-    plotMetrics(out + "_metrics.png", csvFile, title, "time_s", "time [s]", false, hasData, arrow);
-    std::printf("wrote %s_metrics.csv, %s_metrics.png, %s_average.csv\n", out.c_str(), out.c_str(), out.c_str());
+    const bool drawn = plotMetrics("drum-series", csvFile, out + "_metrics.png", title,
+                                   steady && start >= 0 ? std::vector<std::string>{"--steady-from", number(tSteady)}
+                                                        : std::vector<std::string>{});
+    std::printf("wrote %s_metrics.csv, %s%s_average.csv\n", out.c_str(),
+                drawn ? (out + "_metrics.png, ").c_str() : "", out.c_str());
     return 0;
 }
 
@@ -393,7 +375,6 @@ int crossSpeedTable(const std::string& out, const std::vector<std::string>& file
     md << "\n|---|---|---|---|";
     for (size_t i = 0; i < table().size(); ++i) md << "---|";
     md << "\n";
-    std::vector<bool> hasData(table().size(), false);
     for (const auto& r : rows) {
         std::vector<std::string> cells;
         for (const std::string& c : columns) cells.push_back(number(get(r, c)));
@@ -405,14 +386,14 @@ int crossSpeedTable(const std::string& out, const std::vector<std::string>& file
         for (size_t i = 0; i < table().size(); ++i) {
             const double mean = get(r, table()[i].column());
             md << " " << withError(mean, get(r, table()[i].seColumn())) << " |";
-            hasData[i] = hasData[i] || std::isfinite(mean);
         }
         md << "\n";
     }
     csv.close();
-    plotMetrics(out + ".png", out + ".csv", "time-averaged drum metrics against speed (error bars: standard error)",
-                "rpm", "drum speed [rpm]", true, hasData, "");
-    std::printf("wrote %s.csv, %s.md, %s.png\n", out.c_str(), out.c_str(), out.c_str());
+    md.close();
+    const bool drawn = plotMetrics("drum-table", out + ".csv", out + ".png",
+                                   "time-averaged drum metrics against speed (error bars: standard error)");
+    std::printf("wrote %s.csv, %s.md%s\n", out.c_str(), out.c_str(), drawn ? (", " + out + ".png").c_str() : "");
     return 0;
 }
 

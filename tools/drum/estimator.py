@@ -2,32 +2,33 @@
 with the batch length chosen from the series, and a Student-t interval at the estimator's
 effective degrees of freedom.
 
-Why not a handful of whole drum revolutions: the drum's metrics decorrelate within tenths of a
-second, so five revolution-long batches throw away most of what the series knows about its own
-scatter. Their standard error has 4 degrees of freedom (known only to within a factor 0.6-2.9 at
-95 %), and "mean +- 2 SE" at 4 degrees of freedom covers the true mean about 88 % of the time,
-not 95 %.
+Why not five whole drum revolutions: the drum's metrics decorrelate within tenths of a second, so
+five revolution-long batch means use little of what the series knows about its own scatter. Their
+standard error has 4 degrees of freedom (the true one lies within a factor 0.6-2.9 of it, 95 %),
+and "mean +- 2 SE" at 4 degrees of freedom covers the true mean about 88 % of the time, not 95 %.
 
-What this does instead (`mean_interval`):
-- the variance of the mean by overlapping batch means (OBM, Meketon & Schmeiser 1984): every
-  window of b consecutive samples is a batch, which has about 1.5 (n/b - 1) degrees of freedom
-  (Welch 1987) against n/b - 1 for the same batches laid end to end;
-- the batch length b from the series (`batch_length`): at least 10 integrated autocorrelation
-  times (Sokal's automatic window, so each batch mean is nearly independent of the next one but
-  one) and at least one period of a quasi-periodic swing, where the autocorrelation shows one, in
-  whole periods (a batch of whole swings averages the swing out); within that, the longest batch
-  that still leaves 10 degrees of freedom (a longer batch is less biased, and more degrees of
-  freedom than 10 narrow a 95 % interval by 12 % at most). Where the series is too short for
-  both, the lower bounds win and the degrees of freedom fall below 10: reported, not hidden;
-- the standard error corrected for the batch means' leading bias: for correlations that decay
-  like an exponential, OBM's variance falls short by about tau_int / b (Song & Schmeiser 1995:
-  -Gamma / b, Gamma = 2 sum k gamma_k, which equals tau_int times the variance of the mean's
-  numerator for an AR(1)); b >= 10 tau_int keeps the correction within 11 %;
+What `mean_interval` does instead:
+- the variance of the mean by overlapping batch means (OBM, Meketon & Schmeiser 1984): every run of
+  b consecutive samples is a batch; the estimate has about 1.5 (n/b - 1) degrees of freedom, half
+  as many again as the same batch length laid end to end;
+- the batch length from the series (`batch_length`): at least 10 integrated autocorrelation times
+  tau_int (Sokal's automatic window); where the autocorrelation shows a quasi-periodic swing, whole
+  swings instead, at least one and the nearest number to 10 tau_int (a batch of whole swings
+  averages the swing out). Within that, the longest batch that leaves 10 degrees of freedom
+  (longer batches are less biased; more degrees of freedom than 10 would narrow a 95 % interval
+  by 12 % at most). Where the series is too short for both, the lower bound wins and the degrees
+  of freedom fall below 10: reported, not hidden;
+- the leading bias of batch means corrected: the batch-means variance falls short of
+  sigma^2 = n Var(mean) by about Gamma / b, Gamma = 2 sum_k k gamma_k; for correlations that
+  decay without changing sign Gamma / sigma^2 is close to tau_int (an AR(1): 2 phi / (1 - phi^2)
+  against (1 + phi) / (2 (1 - phi)), 9.47 and 9.5 at phi = 0.9). So the variance is divided by
+  1 - tau_int / b (at most 11 %, as b >= 10 tau_int), and the degrees of freedom are multiplied
+  by it (`obm_dof`). A swing's correlations change sign and bias batch means the other way
+  (upwards, a few per cent): no correction there;
 - the half-width from Student's t at those degrees of freedom.
 
-Coverage on synthetic series with known means (tests/harness/test_estimator.py): AR(1) with
-lag-one correlation 0.9 at the drum's 0.05 s snapshots, and a noisy 0.5-1 Hz swing plus AR(1)
-noise, 15-40 s long; docs/drum/error_bars.md has the numbers.
+Measured on synthetic series with a known mean (tools/drum/synthetic.py,
+tests/harness/test_estimator.py; the numbers in docs/drum/error_bars.md).
 
 Needs: python3-numpy, python3-scipy.
 """
@@ -71,9 +72,10 @@ def integrated_time(rho):
 
 def swing_period(rho):
     """The period in samples of a quasi-periodic swing, 0 where the series shows none: the lag of
-    the autocorrelation's highest point in its first positive lobe after its first zero, if that
-    point stands out (above twice its standard error by Bartlett's formula) from the noise of an
-    estimated autocorrelation; a series without a swing has lobes there too, only small ones."""
+    the autocorrelation's highest point in its first positive lobe after its first zero, where that
+    point stands out from the noise of an estimated autocorrelation: above twice its standard
+    error by Bartlett's formula for correlations that end at the first zero (a series without a
+    swing has lobes there too, only small ones), and within the first half of the series."""
     n = len(rho)
     first_zero = np.nonzero(rho < 0)[0]
     if not len(first_zero):
@@ -85,38 +87,45 @@ def swing_period(rho):
     down = np.nonzero(rho[start:] < 0)[0]
     end = start + down[0] if len(down) else n
     p = start + int(np.argmax(rho[start:end]))
-    bartlett = math.sqrt((1.0 + 2.0 * float(np.sum(rho[1:p] ** 2))) / n)
+    bartlett = math.sqrt((1.0 + 2.0 * float(np.sum(rho[1:first_zero[0]] ** 2))) / n)
     return p if rho[p] > 2.0 * bartlett and p <= n // 2 else 0
 
 
-def obm_dof(n, b):
-    """Effective degrees of freedom of the OBM variance with batch length b of n samples."""
-    return 1.5 * (n / b - 1.0)
+def obm_dof(n, b, decay=0.0):
+    """Effective degrees of freedom of the OBM variance with batch length b of n samples:
+    1.5 (n/b - 1) for batches much longer than the correlations, times 1 - decay/b
+    for correlations that decay over `decay` samples (tau_int; 0 for a swing, see `mean_interval`):
+    batches of 10 tau_int of an AR(1) series have about that many fewer (measured: 4.7 against the
+    formula's 6.0 at 6.3 tau_int, 8.9 against 10.0 at 11 tau_int)."""
+    return 1.5 * (n / b - 1.0) * (1.0 - decay / b)
 
 
 def batch_length(x, min_dof=MIN_DOF):
     """(b, tau_int, swing period) in samples for the series x (module note): b at least
-    TAU_BATCHES tau_int and at least one swing, in whole swings; the longest such b that leaves
-    `min_dof` degrees of freedom, or the shortest where none does; at most n / 2."""
+    TAU_BATCHES tau_int, or where the series swings, the nearest whole number of swings to that
+    (one at least); the longest such b that leaves `min_dof` degrees of freedom, or the shortest
+    where none does; at most n / 2."""
     n = len(x)
     rho = autocorrelation(x)
     tau, _ = integrated_time(rho)
     period = swing_period(rho)
     unit = period or 1
-    shortest = unit * max(1, math.ceil(TAU_BATCHES * max(tau, 0.0) / unit))
-    longest = unit * math.floor(n / (1.0 + min_dof / 1.5) / unit)  # obm_dof(n, longest) >= min_dof
+    shortest = unit * max(1, round(TAU_BATCHES * max(tau, 0.0) / unit))
+    lengths = unit * np.arange(1, n // 2 // unit + 1)
+    enough = lengths[obm_dof(n, lengths, 0.0 if period else max(tau, 0.0)) >= min_dof]
+    longest = int(enough[-1]) if len(enough) else 0
     return max(1, min(max(shortest, longest), n // 2)), tau, period
 
 
 def obm(x, b):
-    """(mean, standard error of the mean, effective dof) by overlapping batch means of length b:
+    """(mean, standard error of the mean) by overlapping batch means of length b:
     var = n b / ((n - b + 1)(n - b)) sum_j (mean of window j - mean)^2 estimates n Var(mean)."""
     n = len(x)
     sums = np.concatenate(([0.0], np.cumsum(x)))
     mean = sums[-1] / n
     windows = (sums[b:] - sums[:-b]) / b
     var = n * b / ((n - b + 1) * (n - b)) * float(np.sum((windows - mean) ** 2))
-    return mean, math.sqrt(var / n), obm_dof(n, b)
+    return mean, math.sqrt(var / n)
 
 
 def mean_interval(values, dt, confidence=0.95, min_dof=MIN_DOF):
@@ -128,9 +137,13 @@ def mean_interval(values, dt, confidence=0.95, min_dof=MIN_DOF):
     n = len(x)
     if n < 4:
         return Interval(float(np.mean(x)) if n else math.nan, math.nan, math.nan, math.nan, math.nan)
-    b, tau, _ = batch_length(x, min_dof)
-    mean, se, dof = obm(x, b)
-    se /= math.sqrt(1.0 - max(tau, 0.0) / b)  # OBM's leading bias, -tau_int / b (module note)
+    b, tau, period = batch_length(x, min_dof)
+    # a swing's correlations change sign and bias batch means the other way: no decay term there;
+    # at most b / 2 where the series is too short for 10 tau_int in half of it
+    decay = 0.0 if period else min(max(tau, 0.0), b / 2.0)
+    mean, se = obm(x, b)
+    se /= math.sqrt(1.0 - decay / b)  # batch means' leading bias, -tau_int / b (module note)
+    dof = obm_dof(n, b, decay)
     return Interval(mean, float(stats.t.ppf(0.5 + confidence / 2.0, dof)) * se, dof, b * dt, se)
 
 

@@ -206,6 +206,26 @@ def censored_median(values, lower_bounds):
     return f"{low:.0f}–{high:.0f}" if math.isfinite(high) else f"≥ {low:.0f}"
 
 
+def answer(rows):
+    """The study's answer in plain words, first in its report: how the head moves from speed to
+    speed, and at how many of the steps the thesis describes (Fig. 3.2-3.4) it moves the thesis'
+    way."""
+    steps = [f for f in findings(rows) if f[0] == "Hh"]
+    if not steps:
+        return f"One speed ({rows[0]['rpm']:g} rpm) so far: no step to compare." if rows else "No speed yet."
+    moves = "; ".join(f"{ours} {a:g} → {b:g} rpm" for _, a, b, _, ours, *_ in steps)
+    said = [f for f in findings(rows) if f[3]]
+    agree = [f for f in said if f[3] == f[4]]
+    text = (f"**Answer.** The head Hh, speed by speed (a change beyond twice the combined standard error): "
+            f"{moves}.")
+    if said:
+        differ = ", ".join(f"{k} {a:g} → {b:g} rpm (thesis: {t}; here: {o})" for k, a, b, t, o, *_ in said
+                           if t != o)
+        text += (f" Of the {len(said)} steps the thesis describes, {len(agree)} move its way"
+                 + (f"; not: {differ}" if differ else "") + ".")
+    return text
+
+
 def markdown(name, rows, reached=(), slow=float("nan")):
     """The study's report; `slow`: slowest_round's factor, for the minutes at the benchmark's
     slowest round."""
@@ -213,7 +233,7 @@ def markdown(name, rows, reached=(), slow=float("nan")):
         v, e = float(r[col]) * scale, float(r[se]) * scale
         return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
 
-    lines = [f"# Drum study `{name}`", "",
+    lines = [f"# Drum study `{name}`", "", answer(rows), "",
              f"Written by `tools/drum/report.py --name {name}` from `docs/drum/{name}.csv` "
              "(one row per finished speed; `done`: the stop rule's target reached, else capped). "
              "Averages over whole revolutions after the steady start, ± their standard error by "
