@@ -294,12 +294,13 @@ def main(argv=None):
             ("critical t", "critical_t", "{:.2f}"), ("agree", lambda r: "yes" if r["agree"] else "**no**", None),
             ("caught at 80 %", "detectable", "{:.3g}")])
         here = all(r["agree"] for r in rows)
-        texts.append(f"{rpm:g} rpm, A: `{args.a}` ({revolutions(a)}), B: `{args.b}` ({revolutions(b)}); two-sided "
+        # the answer first, then how it was reached
+        texts.append(f"**{rpm:g} rpm: {verdict(here, args.kind)}** "
+                     f"{settings_sentence(differing(variables(args.a, rpm), variables(args.b, rpm)))}\n\n"
+                     f"A: `{args.a}` ({revolutions(a)}), B: `{args.b}` ({revolutions(b)}); two-sided "
                      f"{args.alpha:g} family-wise (Bonferroni over {len(rows)} metrics). \"caught at 80 %\": the "
                      f"true difference this check would catch with 80 % probability at these degrees of freedom (a "
-                     f"smaller one may pass unseen).\n\n{table}\n{not_steady('A', a)}{not_steady('B', b)}"
-                     f"{verdict(here, args.kind)} "
-                     f"{settings_sentence(differing(variables(args.a, rpm), variables(args.b, rpm)))}\n")
+                     f"smaller one may pass unseen).\n\n{table}\n{not_steady('A', a)}{not_steady('B', b)}")
         every_row += rows
         agree = agree and here
     if len(args.rpm) > 1:
