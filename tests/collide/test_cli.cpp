@@ -16,16 +16,14 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "../shell.h"
 #include <vector>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status;          // the exit code
-    std::string output;  // stdout and stderr
-};
 
 // Where no installed materials file is: the tests that need none to be found
 // must not depend on whether the project is installed.
@@ -34,15 +32,7 @@ const std::string kNoInstall = "LIGGGHTS_VISCOELASTIC_DATADIR=/nonexistent";
 // Runs collide with `args` in `dir` (with `env`, e.g. "NAME=value").
 Result collide(const fs::path& dir, const std::string& args, const std::string& env = "")
 {
-    const std::string command = "cd '" + dir.string() + "' && " + env + " '" COLLIDE "' " + args + " 2>&1";
-    FILE* p = popen(command.c_str(), "r");
-    if (!p) throw std::runtime_error("cannot run " + command);
-    Result r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return runShell("cd '" + dir.string() + "' && " + env + " '" COLLIDE "' " + args);
 }
 
 // An empty directory for one test.

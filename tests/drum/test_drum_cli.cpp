@@ -13,26 +13,16 @@
 #include <sstream>
 #include <string>
 
+#include "../shell.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status;          // the exit code
-    std::string output;  // stdout and stderr
-};
-
 // Runs `command` in `dir` (with `env`, e.g. "NAME=value").
 Result run(const std::string& command, const fs::path& dir, const std::string& env = "")
 {
-    const std::string full = "cd '" + dir.string() + "' && " + env + " " + command + " 2>&1";
-    FILE* p = popen(full.c_str(), "r");
-    Result r;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, p)) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return runShell("cd '" + dir.string() + "' && " + env + " " + command);
 }
 
 std::string contents(const fs::path& file)

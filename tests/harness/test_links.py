@@ -41,8 +41,8 @@ HEADING = re.compile(r"^\s{0,3}(#{1,6})\s+(.*?)\s*#*\s*$")
 SCHEME = re.compile(r"^[a-zA-Z][a-zA-Z0-9+.-]*:")
 
 
-def prose_lines(text):
-    """(line number, line) outside fenced code blocks, with inline code removed."""
+def outside_fences(text):
+    """(line number, line) of the lines outside fenced code blocks."""
     fence = None
     for number, line in enumerate(text.splitlines(), 1):
         m = FENCE.match(line)
@@ -53,7 +53,13 @@ def prose_lines(text):
                 fence = None
             continue
         if fence is None:
-            yield number, INLINE_CODE.sub("", line)
+            yield number, line
+
+
+def prose_lines(text):
+    """(line number, line) outside fenced code blocks, with inline code removed."""
+    for number, line in outside_fences(text):
+        yield number, INLINE_CODE.sub("", line)
 
 
 def links(text):
@@ -91,18 +97,7 @@ def anchors(path):
     """Every anchor a Markdown file defines: its headings' slugs (repeats numbered as GitHub
     numbers them) and explicit HTML ids."""
     found, seen = set(), {}
-    text = path.read_text(encoding="utf-8")
-    fence = None
-    for line in text.splitlines():
-        m = FENCE.match(line)
-        if m:
-            if fence is None:
-                fence = m.group(1)[0] * len(m.group(1))
-            elif m.group(1).startswith(fence):
-                fence = None
-            continue
-        if fence is not None:
-            continue
+    for _, line in outside_fences(path.read_text(encoding="utf-8")):
         h = HEADING.match(line)
         if h:
             base = slug(h.group(2))
