@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "discrete.h"
+#include "free_flow.h"
 #include "pournin.h"
 
 namespace viscoelastic {
@@ -125,21 +126,12 @@ inline UnitCoefficients normalOnly(double tcPrime, double lnEnPrime)
 // at tc. It is et where the spring holds no force at t0 (et = en).
 inline double letGoRestitution(const ContactParameters& p)
 {
-    const auto flow = [](const Oscillator& o, double x, double u, double t, double& xOut, double& uOut) {
-        const double l = 0.5 * o.c, w = std::sqrt(o.k - l * l), e = std::exp(-l * t);
-        const double co = std::cos(w * t), si = std::sin(w * t) / w;
-        xOut = e * (x * co + (u + l * x) * si), uOut = e * (u * co - (l * u + o.k * x) * si);
-    };
     const Oscillator n = pourninOscillator(p.tc, std::log(p.en)), t = pourninOscillator(p.tc, std::log(p.et));
-    // from (0, 1) the force k x + c u is e^(-l t) (c cos wt + (k - c l) sin wt / w): zero at w t0 in (0, pi]
-    const double w = std::sqrt(n.k - 0.25 * n.c * n.c);
-    double angle = std::atan2(-n.c * w, n.k - 0.5 * n.c * n.c);
-    if (angle <= 0.0) angle += kPi;
-    const double t0 = angle / w;
-    double xi, u;
-    flow(t, 0.0, 1.0, t0, xi, u);
-    flow(t, -t.c * u / t.k, u, p.tc - t0, xi, u);
-    return -u;
+    const FreeOscillator normal(n.k, n.c), spring(t.k, t.c);
+    const double zero = normal.forceZeroFrom({0.0, 1.0}, 0.0);
+    Motion m = spring.after({0.0, 1.0}, zero);
+    m.x = -t.c * m.u / t.k;
+    return -spring.after(m, p.tc - zero).u;
 }
 
 // `start`: how the tangential model in use begins its spring (discrete.h);
