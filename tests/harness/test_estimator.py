@@ -108,5 +108,28 @@ class Pieces(unittest.TestCase):
         self.assertGreater(half_width, 1.96 * 0.5)
 
 
+class Power(unittest.TestCase):
+    def test_the_textbook_normal_values(self):
+        # a difference 2.80 standard errors large is found 80 % of the time at 95 % (1.96 + 0.84)
+        self.assertAlmostEqual(estimator.power(2.8016, 1.0, 1e7), 0.80, delta=1e-3)
+        self.assertAlmostEqual(estimator.power(0.0, 1.0, 1e7), 0.05, delta=1e-3)  # no difference: the false alarms
+
+    def test_the_detection_rate_of_simulated_differences(self):
+        # differences of two runs with 10 dof each (chi-square standard errors), true difference
+        # delta: the rate at which their Welch interval excludes 0 matches power() (binomial 4 sd)
+        rng = np.random.default_rng(11)
+        h = estimator.half_width_for_power(1.0)
+        t10 = float(estimator.stats.t.ppf(0.975, 10))
+        se = h / t10  # each run's true standard error at the half-width asked of it
+        n, found = 20000, 0
+        for _ in range(n):
+            a = estimator.Interval(1.0 + rng.normal(0, se), math.nan, 10, math.nan,
+                                   se * math.sqrt(rng.chisquare(10) / 10))
+            b = estimator.Interval(rng.normal(0, se), math.nan, 10, math.nan, se * math.sqrt(rng.chisquare(10) / 10))
+            d, hw, _ = estimator.compare(a, b)
+            found += abs(d) > hw
+        self.assertAlmostEqual(found / n, 0.80, delta=4 * math.sqrt(0.8 * 0.2 / n))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -44,6 +44,14 @@ class Histories(unittest.TestCase):
                                  {"batches": 5.0, "m0_u": 1.0, "m0_se_u": 0.0}, METRICS[:1])
         self.assertTrue(rows[0]["agree"])
 
+    def test_a_row_with_the_estimators_dof_is_read_at_them(self):
+        # a study stopped by --rule obm has no whole-revolution batches: <key>_dof stands in for n - 1
+        m = dict(METRICS[0], key="m0")
+        a = {"batches": math.nan, "m0_u": 1.0, "m0_se_u": 0.1, "m0_dof": 14.5}
+        b = {"batches": 5.0, "m0_u": 1.0, "m0_se_u": 0.1}
+        self.assertEqual(histories.compare(a, b, [m])[0]["dof"], 4.0)  # b's 5 batches are the smaller side
+        self.assertAlmostEqual(histories.compare(a, dict(b, m0_dof=20.0), [m])[0]["dof"], 14.5)
+
     def test_smaller_sides_degrees_of_freedom(self):
         self.assertEqual(histories.smaller_dof(5, 3), 2)
         self.assertEqual(histories.smaller_dof(12, 12), 11)

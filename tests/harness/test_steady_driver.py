@@ -195,6 +195,74 @@ class Restore(unittest.TestCase):
             self.assertIn("not used", said.getvalue())
 
 
+    def test_a_checkpoint_whose_stop_rule_changed_is_resumed_under_the_new_rule(self):
+        # targets, cap and rule decide only where a speed stops: its simulated seconds are kept
+        import contextlib
+        import io
+        with tempfile.TemporaryDirectory() as d:
+            study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5", "--rule", "obm",
+                                                   "--target", "Hc=5e-5", "--cap", "12"]))
+            study.work = Path(d) / "post"
+            study.work.mkdir()
+            part = study.partial(21)
+            part.mkdir(parents=True)
+            old = dict(study.settings, targets={"Hc": 3e-4}, cap=20.0, min_batches=3)
+            del old["rule"]
+            steady.pack(Path(__file__), part / "state_seg4.restart.gz")
+            (part / "metrics_cache.csv").write_text("step,time_s\n10,0.0002\n")
+            saved = {"settings": old, "start_sha256": "abc", "segments": 4, "simulated_s": 1.0, "last_step": 10,
+                     "state": "state_seg4.restart.gz"}
+            steady.harness.write_json(part / "progress.json", saved)
+            with contextlib.redirect_stdout(io.StringIO()):
+                done = study.restore(21, Path(d) / "start", "abc", None)
+            self.assertEqual(done["segments"], 4)
+            self.assertEqual(done["settings"], study.settings)
+
+
+class ObmRule(unittest.TestCase):
+    IV = steady.estimator.Interval
+
+    def test_done_only_where_every_half_width_meets_its_target_at_ten_dof(self):
+        targets = {"Hc": 5e-5, "angle": 0.05}
+        ok = {"Hc": self.IV(-0.097, 4e-5, 12.0, 1.0, 2e-5), "angle": self.IV(34.5, 0.04, 10.5, 1.0, 0.02)}
+        self.assertEqual(steady.obm_verdict(ok, targets, 3.0, 20.0), "done")
+        wide = dict(ok, angle=self.IV(34.5, 0.06, 30.0, 1.0, 0.03))
+        self.assertEqual(steady.obm_verdict(wide, targets, 3.0, 20.0), "continue")
+        few = dict(ok, Hc=self.IV(-0.097, 1e-5, 9.9, 1.0, 4e-6))  # narrow, but at 9.9 dof
+        self.assertEqual(steady.obm_verdict(few, targets, 3.0, 20.0), "continue")
+        self.assertEqual(steady.obm_verdict(few, targets, 20.0, 20.0), "capped")
+        self.assertEqual(steady.obm_verdict({}, targets, 3.0, 20.0), "continue")  # not settled
+        nan = dict(ok, Hc=self.IV(-0.097, math.nan, math.nan, math.nan, math.nan))
+        self.assertEqual(steady.obm_verdict(nan, targets, 3.0, 20.0), "continue")
+
+    def test_intervals_over_the_steady_window_only(self):
+        # an AR(1) series about -0.097 m after a start far from it: the window begins at the steady start
+        rng = steady.estimator.np.random.default_rng(7)
+        x, rows = 0.0, []
+        for k in range(600):
+            x = 0.8 * x + rng.normal(0.0, 1e-4)
+            rows.append({"time_s": 0.05 * k, "Hc_m": (-0.05 if k < 100 else -0.097) + x})
+        iv = steady.window_intervals(rows, 5.0, 0.05, {"Hc": "Hc_m"})["Hc"]
+        self.assertLess(abs(iv.mean + 0.097), 3 * iv.se)
+        self.assertGreaterEqual(iv.dof, 10)
+        whole = steady.window_intervals(rows, 0.0, 0.05, {"Hc": "Hc_m"})["Hc"]
+        self.assertGreater(abs(whole.mean - iv.mean), 0.005)  # the start, a sixth of the series, would shift it
+
+    def test_time_still_needed_from_the_square_root_law(self):
+        targets = {"Hc": 5e-5}
+        # twice the target after 2 s averaged: 4 times as long, 6 s more
+        self.assertAlmostEqual(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 0)}, targets, 2.0), 6.0)
+        self.assertEqual(steady.obm_still_needed({"Hc": self.IV(0, 4e-5, 12, 1, 0)}, targets, 2.0), 0.0)
+        self.assertTrue(math.isnan(steady.obm_still_needed({}, targets, 2.0)))
+
+    def test_the_rule_is_a_setting_only_where_it_is_not_the_default(self):
+        plain = steady.settings_of(steady.arguments(["--var", "dt", "2e-5"]))
+        self.assertNotIn("rule", plain)  # studies committed before the option stay comparable
+        obm = steady.settings_of(steady.arguments(["--var", "dt", "2e-5", "--rule", "obm"]))
+        self.assertEqual(obm["rule"], "obm")
+        self.assertEqual(steady.trajectory(plain), steady.trajectory(obm))
+
+
 class Pack(unittest.TestCase):
     def test_the_same_state_packs_to_the_same_bytes(self):
         # through differently named temporary files, seconds apart: git must see one object

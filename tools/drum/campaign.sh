@@ -175,11 +175,16 @@ against_chain() {  # NAME KIND OUT MESSAGE, then steady.py's options for the stu
 # one timestep with the nominal law (skin: the neighbour skin in bead diameters; a thinner one
 # changes only round-off, never which contacts are computed, and has fewer pairs to check where
 # beads move little per step: benchmarks/README.md, "Neighbour skin at the thesis' tc/81")
+# Each ends where its 95 % half-widths (tools/drum/estimator.py, 10 dof at least) are within
+# Hc 0.0535 mm and angle 0.0535 deg: two runs at that detect a difference of 0.1 mm / 0.1 deg
+# between them with 80 % power (estimator.half_width_for_power). The stop rule changed after
+# tc/81 had run 0.75 s; its segments are kept (steady.py resumes a trajectory under a new rule).
+power_rule=(--rule obm --target Hc=5.35e-5 --target angle=0.0535)
 timestep() {
   local step=$1 label=$2 segment=$3 skin=$4
   against_chain "dt_$label" timesteps "docs/drum/timestep_21rpm_$label.md" \
     "Drum: 21 rpm at tc/5 against $label at thesis scale" \
-    --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20
+    --var dt "$step" --var exact off --var skin "$skin" --segment "$segment" --cap 20 "${power_rule[@]}"
 }
 # the thesis' tc/81 first: the reference every other timestep is read against, and the longest
 # run (a day or more of 2 cores), so it starts before the rest

@@ -156,3 +156,27 @@ def compare(a, b, confidence=0.95):
         return a.mean - b.mean, 0.0, math.nan
     dof = var ** 2 / (a.se ** 4 / a.dof + b.se ** 4 / b.dof)
     return a.mean - b.mean, float(stats.t.ppf(0.5 + confidence / 2.0, dof)) * math.sqrt(var), dof
+
+
+def power(delta, se, dof, confidence=0.95):
+    """The probability that a difference of true size `delta` is found (its interval at this
+    confidence excludes 0), for a difference estimated with standard error `se` at `dof` degrees
+    of freedom: the noncentral t's tail beyond the critical value (both sides)."""
+    if not (se > 0 and dof > 0):
+        return math.nan
+    crit = float(stats.t.ppf(0.5 + confidence / 2.0, dof))
+    nc = abs(delta) / se
+    return float(stats.nct.sf(crit, dof, nc) + stats.nct.cdf(-crit, dof, nc))
+
+
+def half_width_for_power(delta, power_wanted=0.8, dof=MIN_DOF, confidence=0.95):
+    """The 95 % half-width each of two independent runs must reach (at `dof` degrees of freedom
+    each) for their difference to be found with probability `power_wanted` where it is `delta`:
+    Hc 0.1 mm at 80 % asks 0.054 mm of each side."""
+    lo, hi = 1e-12 * abs(delta), abs(delta)
+    t = float(stats.t.ppf(0.5 + confidence / 2.0, dof))
+    for _ in range(100):  # bisection: power falls as the half-width grows
+        h = 0.5 * (lo + hi)
+        se = math.sqrt(2.0) * h / t
+        lo, hi = (h, hi) if power(delta, se, 2.0 * dof, confidence) >= power_wanted else (lo, h)
+    return lo

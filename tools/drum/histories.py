@@ -81,7 +81,7 @@ def detectable_sum(parts, critical_of, power=0.8, replicas=20000, dof=None):
     if not (all(n >= 2 for _, n in parts) and scale > 0):
         return float("nan")
     rng = np.random.default_rng(20261204)
-    dofs = [int(n) - 1 for _, n in parts]
+    dofs = [n - 1 for _, n in parts]
     est = [se * np.sqrt(rng.chisquare(k, replicas) / k) for (se, _), k in zip(parts, dofs)]
     noise = rng.normal(0.0, scale, replicas)
     if dof is None:
@@ -95,6 +95,13 @@ def detectable_sum(parts, critical_of, power=0.8, replicas=20000, dof=None):
     return optimize.brentq(caught, 0.0, hi, xtol=1e-6 * scale) if caught(hi) >= 0.0 else float("inf")
 
 
+def batches(row, m):
+    """The batches a side's standard error of metric m stands on: a row with the metric's effective
+    degrees of freedom (<key>_dof, tools/drum/estimator.py) counts as that many plus one."""
+    dof = row.get(f"{m.get('key')}_dof", math.nan)
+    return dof + 1.0 if isinstance(dof, float) and math.isfinite(dof) else row["batches"]
+
+
 def compare(a, b, metrics, alpha=0.05, power=None):
     """One row per metric with finite values on both sides: both averages, the difference, its
     combined SE, t, the degrees of freedom, the critical t and whether they agree; with `power`,
@@ -105,15 +112,16 @@ def compare(a, b, metrics, alpha=0.05, power=None):
     for m in usable:
         va, sa, vb, sb = a[m["column"]], a[m["se_column"]], b[m["column"]], b[m["se_column"]]
         se = math.hypot(sa, sb)
-        dof = smaller_dof(a["batches"], b["batches"])
+        na, nb = batches(a, m), batches(b, m)
+        dof = smaller_dof(na, nb)
         critical = critical_of(dof) if math.isfinite(dof) else float("nan")
         t = (va - vb) / se if se > 0 else float("inf") if va != vb else 0.0
         rows.append({"metric": m["label"], "unit": m["unit"], "a": va, "se_a": sa, "b": vb, "se_b": sb,
                      "difference": va - vb, "combined_se": se, "t": t, "dof": dof,
-                     "welch_dof": welch_dof(sa, a["batches"], sb, b["batches"]), "critical_t": critical,
+                     "welch_dof": welch_dof(sa, na, sb, nb), "critical_t": critical,
                      "agree": abs(t) <= critical})
         if power is not None:
-            rows[-1]["detectable"] = detectable(sa, a["batches"], sb, b["batches"], critical_of, power)
+            rows[-1]["detectable"] = detectable(sa, na, sb, nb, critical_of, power)
     return rows
 
 

@@ -9,12 +9,18 @@ verdict can be 'done'); after each segment
 `drum_metrics steady` decides: the metrics have settled (MSER) and the averages after the steady
 start, by batch means over whole drum revolutions, have standard errors within --target (default
 Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reaches --cap
-simulated seconds stops there, flagged. Then, for the speed: the time series and averages
+simulated seconds stops there, flagged. With --rule obm the error bars are tools/drum/estimator.py's
+instead (overlapping batch means, batch length from the series): the speed is done where each
+target metric's 95 % half-width over the whole steady window is within --target at 10 effective
+degrees of freedom or more, and its row holds the estimator's means, standard errors, half-widths
+(<key>_hw95_<unit>) and degrees of freedom (<key>_dof) for every metric. Then, for the speed: the time series and averages
 (`drum_metrics series`), a ParaView picture, the end state (compressed restart), the settings and
 the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the study's report
 (tools/drum/report.py) to docs/drum/NAME.md and .png, and with --commit the driver commits them.
 Rerunning the command continues from what is committed (and from the segments in post/NAME/ of a
-speed in progress); a committed speed with other settings stops it.
+speed in progress); a committed speed with other settings stops it. A checkpoint or segment of
+the same trajectory (period, -var settings, segment and settle) is resumed when only the stop rule
+changed (targets, cap, rule): the new rule decides from there.
 
 A speed can outlast a working day (7 rpm: five revolutions are 43 s simulated, hours of the
 machine). Every --checkpoint-minutes of wall time (and with --checkpoint-now, at once) the speed
@@ -42,9 +48,11 @@ import harness  # noqa: E402
 import chain  # noqa: E402
 import report  # noqa: E402
 import study  # noqa: E402
+import estimator  # noqa: E402
 
 WHO = "steady"
 DEFAULT_TARGETS = {"Hc": 3e-4, "angle": 0.3}  # [m], [deg]: the default targets
+CONFIDENCE = 0.95  # --rule obm's intervals
 # docs/drum/NAME.csv: one row per speed (the metrics' value and standard-error columns follow)
 TABLE = ["rpm", "conventions", "wall", "period_m", "beads", "dt_s", "settle_s", "average_s", "revolutions",
          "batches", "done", "cpu_hours"]
@@ -69,6 +77,15 @@ def parse_targets(pairs):
     return targets or dict(DEFAULT_TARGETS)
 
 
+# What a speed's trajectory depends on; the rest of the settings (targets, cap, rule) only decide
+# where it stops, so a checkpoint stays usable when they change.
+TRAJECTORY = ("period", "variables", "segment", "settle")
+
+
+def trajectory(settings):
+    return {k: settings.get(k) for k in TRAJECTORY}
+
+
 def settings_of(args):
     """What makes two runs of a speed comparable: a committed speed with other settings is not
     this study's."""
@@ -76,6 +93,8 @@ def settings_of(args):
                 "settle": args.settle, "targets": args.targets, "min_batches": args.min_batches}
     if args.confidence > 0:  # absent otherwise: studies committed before the option stay comparable
         settings["confidence"] = args.confidence
+    if args.rule != "revolutions":  # likewise
+        settings["rule"] = args.rule
     return settings
 
 
@@ -138,7 +157,7 @@ def still_needed(row, t_end, rpm, min_batches, snapshot):
     return max(min_batches * batch - have, 0) * snapshot
 
 
-def progress_note(still, loops, dt):
+def progress_note(still, loops, dt, what="for the minimum of batches"):
     """What a segment's line says of the time left: the simulated seconds still needed at least and
     their wall time at this speed's rate so far (its segments' LIGGGHTS loop times)."""
     if not math.isfinite(still):
@@ -149,7 +168,7 @@ def progress_note(still, loops, dt):
     if not steps:
         return f"at least {still:.3g} s simulated more"
     per_second = sum(lp["loop_s"] for lp in loops) / (steps * dt)
-    return (f"at least {still:.3g} s simulated more for the minimum of batches, about "
+    return (f"at least {still:.3g} s simulated more {what}, about "
             f"{still * per_second / 60:.0f} min at this speed's {per_second / 60:.1f} min per simulated second")
 
 
@@ -159,6 +178,30 @@ def verdict(row, simulated, cap):
     if row["done"] in (1.0, "1", "true", True):
         return "done"
     return "capped" if simulated >= cap - 1e-9 else "continue"
+
+
+def window_intervals(snapshots, steady_from, snapshot, columns):
+    """{key: 95 % Interval (tools/drum/estimator.py)} of each metric column {key: column} over the
+    snapshots (the metrics cache's rows) from the steady start on."""
+    window = [r for r in snapshots if r["time_s"] >= steady_from - 0.5 * snapshot]
+    return {key: estimator.mean_interval([r[c] for r in window], snapshot, CONFIDENCE) for key, c in columns.items()}
+
+
+def obm_verdict(intervals, targets, simulated, cap):
+    """--rule obm, after a segment: 'done' where every target metric's 95 % half-width is within
+    its target at MIN_DOF effective degrees of freedom or more, else 'capped' or 'continue'."""
+    if intervals and all(iv.half_width <= targets[k] and iv.dof >= estimator.MIN_DOF for k, iv in intervals.items()):
+        return "done"
+    return "capped" if simulated >= cap - 1e-9 else "continue"
+
+
+def obm_still_needed(intervals, targets, averaged):
+    """Simulated seconds still needed, about, for the half-widths to reach their targets (they fall
+    as the square root of the time averaged); nan before the series has settled."""
+    if not intervals or not averaged > 0:
+        return float("nan")
+    worst = max((iv.half_width / targets[k]) ** 2 for k, iv in intervals.items())
+    return max(averaged * (worst - 1.0), 0.0) if math.isfinite(worst) else float("nan")
 
 
 def pack(src, dst):
@@ -254,7 +297,8 @@ class Study:
             if not done and previous_done and progress.exists():
                 start, start_sha = self.start_of(previous, first, first_sha)
                 record = harness.read_json(progress)
-                if (record["state"] and record["settings"] == self.settings and record["start"] == str(start)
+                if (record["state"] and trajectory(record["settings"]) == trajectory(self.settings)
+                        and record["start"] == str(start)
                         and record.get("start_sha256", start_sha) == start_sha):
                     try:
                         self.checkpoint(rpm, {**record, "start_sha256": start_sha})
@@ -304,7 +348,7 @@ class Study:
         if not (part / "progress.json").exists():
             return local
         saved = harness.read_json(part / "progress.json")
-        if saved["settings"] != self.settings or saved.get("start_sha256") != start_sha:
+        if trajectory(saved["settings"]) != trajectory(self.settings) or saved.get("start_sha256") != start_sha:
             harness.say(WHO, f"{rpm} rpm: the checkpoint in {part} is of other settings or another start state: "
                              "not used")
             return local
@@ -314,7 +358,7 @@ class Study:
         state = self.work / f"{rpm}rpm_seg{saved['segments']}.restart"
         unpack(part / saved["state"], state)
         trim_cache(part / "metrics_cache.csv", self.cache(rpm), saved["last_step"])
-        done = {**saved, "start": str(start), "state": str(state)}
+        done = {**saved, "settings": self.settings, "start": str(start), "state": str(state)}
         harness.write_json(self.work / f"{rpm}rpm_progress.json", done)
         harness.say(WHO, f"{rpm} rpm: resuming from the checkpoint in {part} (segment {saved['segments']}, "
                          f"{saved['simulated_s']:g} s simulated)")
@@ -354,6 +398,17 @@ class Study:
             args += ["--target", f"{key}={value:g}"]
         return harness.read_csv_text(harness.tool("drum_metrics", *args))[0]
 
+    def intervals(self, rpm, row):
+        """--rule obm: each target metric's 95 % interval (tools/drum/estimator.py) over the
+        snapshots from the steady start (`drum_metrics steady`'s) to the last; {} before the series
+        has settled."""
+        start = float(row["steady_from_s"])
+        if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
+            return {}
+        columns = {m["key"]: m["column"] for m in harness.drum_metric_table()}
+        return window_intervals(harness.read_csv(self.cache(rpm)), start, self.dumpdt,
+                                {k: columns[k] for k in self.args.targets})
+
     def run_speed(self, rpm, start, start_sha):
         """Segments until the verdict; returns (verdict, progress record, end-state restart).
         After each segment its end state is copied to <rpm>rpm_seg<k>.restart and only then
@@ -364,7 +419,7 @@ class Study:
         self.work.mkdir(parents=True, exist_ok=True)
         progress = self.work / f"{rpm}rpm_progress.json"
         done = harness.read_json(progress) if progress.exists() else None
-        if done and (done["settings"] != self.settings or done["start"] != str(start)
+        if done and (trajectory(done["settings"]) != trajectory(self.settings) or done["start"] != str(start)
                      or done.get("start_sha256", start_sha) != start_sha):
             harness.say(WHO, f"{rpm} rpm: the segments in {self.work} are of other settings or another start "
                              "state: not resumed")
@@ -375,6 +430,8 @@ class Study:
             done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha, "segments": 0,
                     "simulated_s": 0.0, "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
         done.setdefault("start_sha256", start_sha)
+        if done.get("outcome", "continue") == "continue":
+            done["settings"] = self.settings  # a changed stop rule applies from here on
         for step, f in harness.snapshots(self.prefix(rpm)):
             if done["last_step"] >= 0 and step > done["last_step"]:
                 f.unlink()
@@ -386,7 +443,7 @@ class Study:
             k = done["segments"] + 1
             grid = done["state"] is None and start is None
             seconds = a.segment + (a.settle if grid else 0.0)
-            if done["segments"] > 0:
+            if done["segments"] > 0 and a.rule == "revolutions":
                 # no longer than the next verdict needs (see next_length)
                 snaps = harness.snapshots(self.prefix(rpm))
                 if snaps:
@@ -405,20 +462,27 @@ class Study:
             # next segment rewrites the snapshot at its first step (the restart's), whose drum
             # forces differ by the restart's one-step perturbation; the cache keeps this one.
             row = self.check(rpm)
-            outcome = done["outcome"] = verdict(row, done["simulated_s"], a.cap)
+            intervals = self.intervals(rpm, row) if a.rule == "obm" else None
+            outcome = done["outcome"] = (verdict(row, done["simulated_s"], a.cap) if intervals is None
+                                         else obm_verdict(intervals, a.targets, done["simulated_s"], a.cap))
             harness.write_json(progress, done)
             if previous:
                 Path(previous).unlink(missing_ok=True)
             if outcome == "continue" and time.monotonic() - self.last_checkpoint >= 60 * a.checkpoint_minutes:
                 self.checkpoint(rpm, done)
                 self.last_checkpoint = time.monotonic()
-            errors = ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
             left = ""
-            if outcome == "continue":
+            if intervals is None:
+                errors = f"{row['batches']} batches, " + ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
                 still = still_needed(row, done["last_step"] * self.dt, rpm, a.min_batches, self.dumpdt)
-                left = f" ({progress_note(still, done['loops'], self.dt)})"
+            else:
+                errors = ", ".join(f"{k} 95 % half-width {iv.half_width:.3g} ({iv.dof:.1f} dof)"
+                                   for k, iv in intervals.items()) or "no interval yet"
+                still = obm_still_needed(intervals, a.targets, done["last_step"] * self.dt - row["steady_from_s"])
+            if outcome == "continue":
+                left = f" ({progress_note(still, done['loops'], self.dt, 'for the half-widths' if intervals else 'for the minimum of batches')})"
             harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
-                             f"{row['batches']} batches, {errors}: {outcome}{left}")
+                             f"{errors}: {outcome}{left}")
         return outcome, done, Path(done["state"])
 
     def finish(self, rpm, outcome, done, restart, start_sha):
@@ -442,6 +506,17 @@ class Study:
                "done": outcome == "done", "cpu_hours": done["cpu_s"] / 3600}
         for m in harness.drum_metric_table():
             row[m["column"]], row[m["se_column"]] = average[m["column"]], average[m["se_column"]]
+        if a.rule == "obm":
+            # the whole steady window, every metric: the estimator's mean, standard error, 95 % half-width
+            # and effective degrees of freedom (the batch means' columns above are replaced)
+            table = harness.drum_metric_table()
+            intervals = window_intervals(harness.read_csv(self.cache(rpm)), steady_from, self.dumpdt,
+                                         {m["key"]: m["column"] for m in table})
+            row["batches"] = float("nan")
+            for m in table:
+                iv = intervals[m["key"]]
+                row[m["column"]], row[m["se_column"]] = iv.mean, iv.se
+                row[f"{m['key']}_hw95_{m['unit']}"], row[f"{m['key']}_dof"] = iv.half_width, iv.dof
         table = self.docs.with_suffix(".csv")
         rows = [r for r in (harness.read_csv(table) if table.exists() else []) if r["rpm"] != rpm]
         rows = sorted(rows + [row], key=lambda r: r["rpm"])
@@ -507,7 +582,8 @@ def arguments(argv=None):
                    help="extra seconds of the first segment of a grid start (default: %(default)s)")
     p.add_argument("--cap", type=float, default=30.0, help="simulated seconds at most per speed (default: %(default)s)")
     p.add_argument("--target", action="append", metavar="KEY=SE",
-                   help="standard error to reach, per metric key of `drum_metrics metrics` (repeatable; "
+                   help="standard error (--rule revolutions) or 95 %% half-width (--rule obm) to reach, per metric "
+                        "key of `drum_metrics metrics` (repeatable; "
                         "default: Hc=0.0003 angle=0.3)")
     p.add_argument("--min-batches", type=int, default=5, help="batches (revolutions) at least (default: %(default)s)")
     p.add_argument("--confidence", type=float, default=0.0,
@@ -515,6 +591,11 @@ def arguments(argv=None):
                         "confidence bound must (chi-square over the batches' degrees of freedom: 4.42 times the "
                         "estimate from 3 batches), which lets calm speeds stop at --min-batches 3 and keeps noisy "
                         "ones going (default: %(default)s)")
+    p.add_argument("--rule", choices=("revolutions", "obm"), default="revolutions",
+                   help="revolutions: batch means of whole revolutions (--min-batches, --confidence) must meet the "
+                        "targets as standard errors; obm: the 95 %% half-widths of tools/drum/estimator.py "
+                        "(overlapping batch means, batch length from the series) over the steady window must meet "
+                        "the targets with 10 effective degrees of freedom at least (default: %(default)s)")
     p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"), default=[],
                    help="a drum.in -var for every run (repeatable), e.g. --var dt 2e-5 --var exact on")
     p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"),
