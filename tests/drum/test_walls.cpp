@@ -336,6 +336,50 @@ TEST_F(DrumCylinder, ShearAlongTheAxisTranslatesTheWall)
     EXPECT_LT(std::fabs(v.z()), 1e-6);
 }
 
+// drum.in's conventions one at a time reach the model. The bead-drum friction
+// (bd_mu): the axial slide of the test above accelerates at mu g for each mu
+// asked. Attraction (attraction off: limitForce on) and the bead-drum en
+// (bd_en): the model's report states the cut contact's continuous
+// restitution, above the en asked, where it states en itself with attraction.
+// The wall contacts' mass (facetmass half: wallMassAsParticle on) with
+// exactRestitution on: the model's ERROR naming the two.
+TEST_F(DrumCylinder, OneConventionAtATimeReachesTheModel)
+{
+    writeVariant(dir / "shearmu.in", "xcylinder ${R} 0.0 0.0 shear y ${omega_wall} store_force yes ${wallopts}",
+                 "xcylinder ${R} 0.0 0.0 shear x ${omega} store_force yes ${wallopts}");
+    for (double mu : {0.5, 0.65}) {
+        const std::string name = "shearmu" + std::to_string(std::lround(100 * mu));
+        const Result r = shell(kMpirun1 + LIGGGHTS_LAUNCHER + kPinned + " -in shearmu.in -var start single -var bd_mu " +
+                                   std::to_string(mu) + " -var rpm 21 -var time 0.02 -var dumpdt 0.02 -var name " + name,
+                               dir, name + ".out");
+        ASSERT_EQ(r.status, 0) << r.output;
+        const drum::Bed b = bed(dir, name, 2000);
+        ASSERT_EQ(b.velocity.size(), 1u);
+        EXPECT_NEAR(b.velocity[0].x(), mu * kG * 0.02, 0.02 * mu * kG * 0.02) << "mu " << mu;
+    }
+    const auto restitution = [&](const std::string& extra, const std::string& name) {
+        const Result r = shell(kMpirun1 + LIGGGHTS_LAUNCHER + kPinned + " -in inputs/drum.in -var start single" + extra +
+                                   " -var time 0.0001 -var dumpdt 0.0001 -var name " + name,
+                               dir, name + ".out");
+        EXPECT_EQ(r.status, 0) << r.output;
+        const std::smatch m = [&] {
+            std::smatch found;
+            std::regex_search(r.output, found, std::regex(R"(\(1,2\):[^\n]*restitution ([0-9.]+) continuous)"));
+            return found;
+        }();
+        return m.empty() ? -1.0 : std::stod(m[1]);
+    };
+    EXPECT_NEAR(restitution("", "conv_plain"), 0.46, 1e-4);
+    EXPECT_NEAR(restitution(" -var bd_en 0.6", "conv_en"), 0.6, 1e-4);
+    EXPECT_GT(restitution(" -var attraction off -var bd_en 0.6", "conv_cut"), 0.6 + 0.01);
+    const Result half = shell(kMpirun1 + LIGGGHTS_LAUNCHER +
+                                  " -in inputs/drum.in -var start single -var period 0.006 -var facetmass half -var exact on "
+                                  "-var time 0.0001 -var dumpdt 0.0001 -var name conv_half",
+                              dir, "conv_half.out");
+    EXPECT_NE(half.status, 0);
+    EXPECT_NE(half.output.find("exactRestitution on contradicts wallMassAsParticle on"), std::string::npos) << half.output;
+}
+
 // A small drum (5 % fill, 0.02 s, 2 ranks) on the primitive cylinder keeps
 // every bead, writes no shell mesh (there is none) and its metrics, the
 // drum's force among them (from f_force_shell), come out of drum_metrics.
