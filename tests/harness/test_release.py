@@ -1,0 +1,63 @@
+"""tools/drum/release.py on synthetic ramps: a bed that lets go 40 % into 27 rpm reads 27.4 on the
+ramp clock, one carried to the end is a lower bound, and the interval across histories is
+Student's."""
+
+import math
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "drum"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+import harness  # noqa: E402
+import release  # noqa: E402
+
+
+def ramp(docs, name, speeds, let_go=None, per=1.5, snap=0.05):
+    """A ramp's series: each speed `per` seconds of snapshots, bed_turn 1 until `let_go` (rpm +
+    fraction of its run), 0.5 after."""
+    t = 10.0
+    for rpm in speeds:
+        rows = [{"time_s": t, "Hc_m": -0.097, "bed_turn_1": 1.0}]  # the state it starts from (left out)
+        for k in range(1, round(per / snap) + 1):
+            clock = rpm + k * snap / per
+            turn = 0.5 if let_go is not None and clock > let_go else 1.0
+            rows.append({"time_s": t + k * snap, "Hc_m": -0.097, "bed_turn_1": turn})
+        t += per
+        harness.write_csv(docs / name / f"{rpm}rpm" / "series_metrics.csv", rows)
+
+
+class Release(unittest.TestCase):
+    def test_ramp_clock_lower_bound_and_interval(self):
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            ramp(docs, "a", range(22, 31), let_go=27.4)
+            ramp(docs, "b", range(22, 31), let_go=27.8)
+            ramp(docs, "c", range(22, 26))
+            rows = release.read(docs, [("a", 0.5, "t", "w", "h1", 1.5), ("b", 0.5, "t", "w", "h2", 1.5),
+                                       ("c", 0.8, "t", "w", "h1", 1.5), ("missing", 0.8, "t", "w", "h2", 1.5)])
+            self.assertEqual([r["study"] for r in rows], ["a", "b", "c"])
+            # the first sample past 27.4, the 13th of 30 into 27 rpm, is the onset
+            self.assertAlmostEqual(rows[0]["release_rpm"], 27 + 13 / 30, places=9)
+            self.assertAlmostEqual(rows[1]["release_rpm"], 27 + 25 / 30, places=9)
+            self.assertTrue(math.isnan(rows[2]["release_rpm"]))
+            self.assertIn("carried to 25 rpm", rows[2]["detected"])
+            mean, hw = release.interval([rows[0]["release_rpm"], rows[1]["release_rpm"]])
+            self.assertAlmostEqual(mean, 27 + 19 / 30, places=9)
+            # two histories 12/30 rpm apart: sd (12/30)/sqrt(2), t(0.975, 1) = 12.706
+            self.assertAlmostEqual(hw, 12.706 * (12 / 30) / math.sqrt(2) / math.sqrt(2), places=3)
+            release.chart(rows, docs / "release.png")
+            self.assertGreater((docs / "release.png").stat().st_size, 10000)
+
+    def test_the_scan_runs_on_12_mm_only_where_it_releases_with_24_mm(self):
+        full = [{"study": "slip_thesis", "release_rpm": 31.5}, {"study": "slip_thesis_replica", "release_rpm": 31.7}]
+        self.assertIsNone(release.scan_period(full))
+        # the 24 mm histories' mean 31.6, 95 % half-width 12.706 x 0.1 = 1.27 rpm
+        self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": 32.5}])[0], 0.012)
+        self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": 33.0}])[0], 0.024)
+        self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": math.nan}])[0], 0.024)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,169 @@
+#!/usr/bin/python3
+"""Where the bed lets go of the drum, ramp by ramp: docs/drum/release.csv and its chart.
+
+Each ramp is a study of tools/drum/steady.py whose speeds run a fixed time each from the end state
+of the speed before (the slip test's ramps, and the release study's). Its release is the onset of
+tools/drum/slip.py: the first sample from which `bed_turn` (a running median over 5 snapshots)
+stays below 0.9 to the end, read on the ramp clock (the speed plus the fraction of its run gone:
+26.7 is 70 % into 26 rpm); half-way (below 0.72) beside it. A ramp that never lets go is listed
+with its last speed, as a lower bound.
+
+The chart: release speed against the bead-drum friction, one point per history, the mean of each
+setting's histories with its 95 % interval (Student's t across histories), and the Froude number
+omega^2 R / g at that speed on the right-hand axis.
+
+The ramps are listed in RAMPS (study, bead-drum mu, conventions, wall, history, seconds per rpm);
+a study not yet run is left out.
+
+  tools/drum/release.py                  # docs/drum/release.csv, release.png
+
+Needs: python3-numpy, python3-scipy, python3-matplotlib.
+"""
+
+import argparse
+import math
+import statistics
+import sys
+from pathlib import Path
+
+from scipy import stats
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import harness  # noqa: E402
+import slip  # noqa: E402
+
+DOCS = harness.REPO / "docs" / "drum"
+R, G = 0.225, 9.81
+# (study, bead-drum mu, conventions, wall, history, seconds per rpm)
+RAMPS = [
+    ("slip_thesis", 0.95, "thesis", "cylinder", "from study_thesis 21 rpm", 1.5),
+    ("slip_thesis_replica", 0.95, "thesis", "cylinder", "from 21 rpm arrived at from 28 rpm", 1.5),
+    ("slip_yade", 0.5, "yade", "cylinder", "from study_yade 21 rpm after 8 s", 1.5),
+    ("slip_yade_replica", 0.5, "yade", "cylinder", "from study_yade 21 rpm steady end state", 1.5),
+    ("slip_tc20", 0.95, "thesis, plain law at tc/20", "cylinder", "from slip_thesis 26 rpm", 1.5),
+    # the release study (tools/drum/campaign.sh): the 12 mm period's check against slip_thesis, then
+    # the friction scan at the thesis' 1.76 s per rpm from three 21 rpm states of the scan's period
+    ("rel_L12_check", 0.95, "thesis, 12 mm period", "cylinder", "from rel_L12_a 21 rpm", 1.5),
+] + [(f"rel_mu{round(100 * mu)}_{h}", mu, "thesis", "cylinder", f"from rel_{h} 21 rpm", 1.76)
+     for mu in (0.5, 0.65, 0.8, 0.95) for h in ("a", "b", "c")]
+CHECK, AGAINST = "rel_L12_check", ("slip_thesis", "slip_thesis_replica")
+COLUMNS = ["study", "mu", "conventions", "wall", "history", "seconds_per_rpm", "release_rpm", "half_way_rpm",
+           "froude", "detected"]
+
+
+def froude(rpm):
+    """omega^2 R / g of the drum at this speed."""
+    return (2.0 * math.pi * rpm / 60.0) ** 2 * R / G
+
+
+def read(docs, ramps=RAMPS):
+    """One row per ramp with a series."""
+    rows = []
+    for study, mu, conventions, wall, history, per_rpm in ramps:
+        ramp = slip.ramp_series(docs, study)
+        if not ramp:
+            continue
+        onset, half = slip.lets_go(ramp), slip.lets_go(ramp, slip.HALF_WAY)
+        row = {"study": study, "mu": mu, "conventions": conventions, "wall": wall, "history": history,
+               "seconds_per_rpm": per_rpm}
+        if onset:
+            at = slip.ramp_clock(ramp, onset)
+            row.update(release_rpm=at, half_way_rpm=slip.ramp_clock(ramp, half) if half else math.nan,
+                       froude=froude(at), detected="bed_turn below 0.9 to the end (running median of 5)")
+        else:
+            last = ramp[-1][1]
+            row.update(release_rpm=math.nan, half_way_rpm=math.nan, froude=math.nan,
+                       detected=f"carried to {last:g} rpm (the ramp's end): releases above it")
+        rows.append(row)
+    return rows
+
+
+def groups(rows):
+    """{(mu, conventions, wall, seconds per rpm): [release rpm of each history that let go]}."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["mu"], r["conventions"], r["wall"], r["seconds_per_rpm"]), []).append(r["release_rpm"])
+    return {k: [x for x in v if math.isfinite(x)] for k, v in out.items()}
+
+
+def interval(values, confidence=0.95):
+    """(mean, half-width) across histories: Student's t at n - 1 dof; nan half-width below 2."""
+    n = len(values)
+    if n == 0:
+        return math.nan, math.nan
+    mean = statistics.fmean(values)
+    if n < 2:
+        return mean, math.nan
+    return mean, float(stats.t.ppf(0.5 + confidence / 2.0, n - 1)) * statistics.stdev(values) / math.sqrt(n)
+
+
+def chart(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for k, (key, values) in enumerate(sorted(groups(rows).items(), key=lambda kv: (kv[0][1], kv[0][0]))):
+        mu, conventions, wall, per_rpm = key
+        mean, hw = interval(values)
+        label = f"{conventions}, {wall}, {per_rpm:g} s/rpm (n={len(values)})"
+        x = mu + 0.01 * (k % 3 - 1)  # settings at one mu side by side
+        line = ax.errorbar([x], [mean], yerr=[hw if math.isfinite(hw) else 0.0], fmt="o", capsize=4, label=label)
+        ax.plot([x] * len(values), values, "x", color=line[0].get_color())
+    ax.set_xlabel("bead-drum friction mu")
+    ax.set_ylabel("release speed [rpm] (onset on the ramp clock)")
+    right = ax.secondary_yaxis("right", functions=(froude, lambda fr: 60.0 / (2.0 * math.pi) * (abs(fr) * G / R) ** 0.5))
+    right.set_ylabel("Froude number omega^2 R / g")
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("Where the bed lets go of the drum (x: each history; o: mean, 95 % across histories)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def scan_period(rows):
+    """(period [m], why) for the friction scan: the 12 mm period where its ramp's release (CHECK)
+    lies within the 95 % interval of the 24 mm histories' (AGAINST) mean, else the 24 mm period;
+    None before the check has run."""
+    check = [r["release_rpm"] for r in rows if r["study"] == CHECK]
+    full = [r["release_rpm"] for r in rows if r["study"] in AGAINST and math.isfinite(r["release_rpm"])]
+    if not check or len(full) < 2:
+        return None
+    mean, hw = interval(full)
+    same = math.isfinite(check[0]) and abs(check[0] - mean) <= hw
+    why = (f"the 12 mm period's ramp lets go at {check[0]:.2f} rpm, the 24 mm period's {len(full)} histories at "
+           f"{mean:.2f} ± {hw:.2f} rpm (95 %): " + ("within it, so the scan runs on 12 mm (half the beads)" if same
+                                                    else "not within it, so the scan runs on the 24 mm period"))
+    return (0.012 if same else 0.024), why
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--docs", default=str(DOCS))
+    p.add_argument("--out", default=str(DOCS / "release"), help="OUT.csv and OUT.png")
+    p.add_argument("--scan-period", action="store_true",
+                   help="print the period the friction scan runs on (0.012 or 0.024; see scan_period) and stop; "
+                        "exit 1 before the check has run")
+    a = p.parse_args(argv)
+    rows = read(Path(a.docs))
+    if a.scan_period:
+        chosen = scan_period(rows)
+        if chosen is None:
+            print("release: the 12 mm period's check has not run yet", file=sys.stderr)
+            return 1
+        print(chosen[0])
+        print(f"release: {chosen[1]}", file=sys.stderr)
+        return 0
+    out = Path(a.out)
+    harness.write_csv(out.with_suffix(".csv"), rows, COLUMNS)
+    if rows:
+        chart(rows, out.with_suffix(".png"))
+    for key, values in groups(rows).items():
+        mean, hw = interval(values)
+        harness.say("release", f"mu {key[0]:g}, {key[1]}, {key[2]}, {key[3]:g} s/rpm: {mean:.2f} ± {hw:.2f} rpm "
+                               f"({len(values)} histories)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
