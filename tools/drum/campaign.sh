@@ -190,6 +190,75 @@ timestep() {
 # run (a day or more of 2 cores), so it starts before the rest
 timestep 1.23e-6 tc81 0.25 0.1
 timestep 5e-6 tc20 0.5 0.3
+# The rest of the timestep ladder at 21 rpm (benchmarks/drum_timestep.py reads them against tc/81):
+# exactRestitution at the coarsest step its guard admits (0.247 tc: 2.45e-5 s) and at tc/10, the
+# plain law at tc/10 and tc/40 (study_thesis' own 21 rpm is exactRestitution's tc/5). (exactCollision
+# needs `tangential pournin`, whose contact history a restart of these `history` states cannot
+# carry: not run yet.)
+ladder() {  # NAME DT EXACT SEGMENT SKIN [RPM]
+  local rpm=${6:-21}
+  steady --name "$1" --speeds "$rpm" --start-state "docs/drum/study_thesis/${rpm}rpm/state.restart.gz" \
+    --var dt "$2" --var exact "$3" --var skin "$5" --segment "$4" --cap "${cap:-20}" "${power_rule[@]}"
+}
+ladder dt_exr_tc4 2.45e-5 on 2 0.3
+ladder dt_exr_tc10 1e-5 on 1 0.3
+ladder dt_tc10 1e-5 off 1 0.3
+# The release study: where the bed lets go against the bead-drum friction (tools/drum/release.py,
+# docs/drum/release.csv). First the 12 mm period (half the beads), along the thesis' chain from the
+# grid (7 -> 14 -> 21 rpm: a grid start at 21 rpm can settle on rolling beads) to a carried 21 rpm
+# (rel_L12_a), then the thesis' table ramped at 1.5 s per rpm as slip_thesis was; if it lets go
+# within the 24 mm histories' interval the scan runs on 12 mm, else on 24 mm. Three start states
+# two revolutions apart at 21 rpm (a: the chain's end state, b, c), then per mu (0.5, 0.65, 0.8,
+# 0.95) a ramp from each at the thesis' 1.76 s per rpm (21 -> 28 rpm over 1e7 steps of 1.23 us),
+# 22 rpm up to about 3 rpm past the release the slip test found.
+release_ramp() {  # NAME START_STATE MU SPEEDS SECONDS PERIOD
+  steady --name "$1" --speeds "$4" --period "$6" --start-state "$2" "${thesis[@]}" --var bd_mu "$3" \
+    --segment "$5" --cap "$5"
+}
+steady --name rel_L12_a --speeds 7,14,21 --period 0.012 "${thesis[@]}" --segment 2 --cap 30 --rule obm
+if ready docs/drum/rel_L12_a/21rpm/state.restart.gz; then
+  release_ramp rel_L12_check docs/drum/rel_L12_a/21rpm/state.restart.gz 0.95 "$slip_speeds" 1.5 0.012
+fi
+if [[ ${#now[@]} -eq 0 ]]; then
+  "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
+  save "Drum: where the bed lets go, ramp by ramp" docs/drum/release.csv docs/drum/release.png
+fi
+if scan=$("$py" tools/drum/release.py --scan-period); then
+  if [[ "$scan" == 0.012 ]]; then first=rel_L12_a; else first=study_thesis; fi
+  declare -A from=([a]="docs/drum/$first/21rpm/state.restart.gz" [b]=docs/drum/rel_b/21rpm/state.restart.gz
+                   [c]=docs/drum/rel_c/21rpm/state.restart.gz)
+  steady --name rel_b --speeds 21 --period "$scan" --start-state "${from[a]}" "${thesis[@]}" --segment 2.86 --cap 5.72
+  if ready "${from[b]}"; then
+    steady --name rel_c --speeds 21 --period "$scan" --start-state "${from[b]}" "${thesis[@]}" --segment 2.86 --cap 5.72
+  fi
+  for tag in 50 65 80 95; do
+    case $tag in
+      50) speeds=22,23,24,25,26,27,28,29,30,31 ;;
+      65) speeds=22,23,24,25,26,27,28,29,30,31,32 ;;
+      80) speeds=22,23,24,25,26,27,28,29,30,31,32,33 ;;
+      95) speeds=22,23,24,25,26,27,28,29,30,31,32,33,34,35 ;;
+    esac
+    for h in a b c; do
+      if ready "${from[$h]}"; then release_ramp "rel_mu${tag}_$h" "${from[$h]}" "0.$tag" "$speeds" 1.76 "$scan"; fi
+    done
+    if [[ ${#now[@]} -eq 0 ]]; then
+      "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
+      save "Drum: where the bed lets go, bead-drum mu up to 0.$tag" docs/drum/release.csv docs/drum/release.png
+    fi
+  done
+fi
+ladder dt_tc40 2.5e-6 off 0.5 0.2
+# Does the speed at which the bed lets go move with the timestep? The thesis-table ramp again from
+# 26 rpm's end state of slip_thesis (tc/5, exactRestitution), 27 -> 35 rpm at tc/20 with the plain
+# law, 1.5 s per rpm as there (tools/drum/slip.py reads both).
+steady --name slip_tc20 --speeds 27,28,29,30,31,32,33,34,35 --start-state docs/drum/slip_thesis/26rpm/state.restart.gz \
+  --var dt 5e-6 --var exact off --segment 1.5 --cap 1.5
+# 42 rpm (the bed released, rolling on the wall): the plain law at tc/40 as the reference, tc/20, and
+# study_thesis' exactRestitution tc/5. Its Hc swings 4 times more than at 21 rpm: the power rule's
+# 0.0535 mm would take about 90 s simulated, so each stops at 8 s (benchmarks/drum_timestep.py
+# states the power reached).
+cap=8 ladder dt42_tc40 2.5e-6 off 0.5 0.2 42
+cap=8 ladder dt42_tc20 5e-6 off 0.5 0.3 42
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
   steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     "${yade[@]}" --segment 2 --cap 40
