@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -378,6 +379,41 @@ TEST_F(DrumCylinder, OneConventionAtATimeReachesTheModel)
                               dir, "conv_half.out");
     EXPECT_NE(half.status, 0);
     EXPECT_NE(half.output.find("exactRestitution on contradicts wallMassAsParticle on"), std::string::npos) << half.output;
+}
+
+// `-var history fresh` continues a restart under other contact models (here
+// tangential pournin with exactCollision from a `history` state, whose
+// contact histories the new layout refuses): the beads go on from the
+// restart's step with the same positions, velocities and spins (ids matched),
+// on 2 ranks, and every bead is kept.
+TEST_F(DrumCylinder, AFreshHistoryContinuesARestartUnderOtherContactModels)
+{
+    const std::string common = " -in inputs/drum.in -var period 0.006 -var fill 0.05 -var dt 1e-5 -var wall cylinder";
+    const Result a = shell(kMpirun2 + LIGGGHTS_LAUNCHER + common + " -var start grid -var time 0.005 -var dumpdt 0.005 -var name fresh_a",
+                           dir, "fresh_a.out");
+    ASSERT_EQ(a.status, 0) << a.output;
+    const std::string b = kMpirun2 + LIGGGHTS_LAUNCHER + common +
+                          " -var start restart -var restart post/fresh_a.restart -var tangential pournin -var collision on "
+                          "-var time 0.001 -var dumpdt 0.001 -var name fresh_b";
+    const Result refused = shell(b, dir, "fresh_refused.out");
+    EXPECT_NE(refused.status, 0) << "the restart's histories were expected to be refused";
+    const Result r = shell(b + " -var history fresh", dir, "fresh_b.out");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("exactCollision on"), std::string::npos);
+    const int created = beadsPrinted(r.output, R"(drum: (\d+) beads \(target)");
+    EXPECT_EQ(beadsPrinted(r.output, R"(drum: done, (\d+) beads kept)"), created);
+    const drum::Bed before = bed(dir, "fresh_a", 500), after = bed(dir, "fresh_b", 500);
+    ASSERT_EQ(before.id.size(), after.id.size());
+    ASSERT_GT(before.id.size(), 1000u);
+    std::map<long, size_t> at;
+    for (size_t k = 0; k < after.id.size(); ++k) at[after.id[k]] = k;
+    for (size_t k = 0; k < before.id.size(); ++k) {
+        const size_t j = at.at(before.id[k]);
+        ASSERT_LT((before.position[k] - after.position[j]).norm(), 1e-12) << before.id[k];
+        ASSERT_LT((before.velocity[k] - after.velocity[j]).norm(), 1e-12) << before.id[k];
+        ASSERT_LT((before.spin[k] - after.spin[j]).norm(), 1e-9) << before.id[k];
+    }
+    EXPECT_TRUE(fs::exists(dir / "post/fresh_b_600.vtp"));
 }
 
 // A small drum (5 % fill, 0.02 s, 2 ranks) on the primitive cylinder keeps

@@ -171,6 +171,26 @@ class Segment(unittest.TestCase):
         log = self.segment_with_log(self.LOOP.format(t=0.1, n=3), seconds=5e-5)
         self.assertEqual(log.runs, [(3, 0.1)])
 
+    def test_a_fresh_start_drops_the_histories_of_the_start_state_only(self):
+        # --fresh-start: the first segment of the first speed (from --start-state) alone; later
+        # segments and speeds continue restarts of the study's own models
+        seen = []
+        with tempfile.TemporaryDirectory() as d:
+            log = Path(d) / "seg.log"
+            log.write_text(self.LOOP.format(t=10.0, n=100000))
+            saved = steady.harness.drum
+            steady.harness.drum = lambda path, np, **variables: seen.append(variables) or steady.harness.Log(log)
+            try:
+                study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5", "--speeds",
+                                                       "21,28", "--fresh-start"]))
+                study.work = Path(d)
+                for rpm, k in ((21, 1), (21, 2), (28, 1)):
+                    study.segment(rpm, k, Path(d) / "start.restart", 2.0)
+            finally:
+                steady.harness.drum = saved
+        self.assertEqual([v.get("history") for v in seen], ["fresh", None, None])
+        self.assertTrue(study.settings["fresh_start"])
+
     def test_a_short_run_stops_the_driver(self):
         with self.assertRaisesRegex(steady.harness.RunFailed, r"runs of \[50000\] steps"):
             self.segment_with_log(self.LOOP.format(t=500.0, n=50000))

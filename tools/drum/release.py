@@ -46,7 +46,16 @@ RAMPS = [
     # the friction scan at the thesis' 1.76 s per rpm from three 21 rpm states of the scan's period
     ("rel_L12_check", 0.95, "thesis, 12 mm period", "cylinder", "from rel_L12_a 21 rpm", 1.5),
 ] + [(f"rel_mu{round(100 * mu)}_{h}", mu, "thesis", "cylinder", f"from rel_{h} 21 rpm", 1.76)
-     for mu in (0.5, 0.65, 0.8, 0.95) for h in ("a", "b", "c")]
+     for mu in (0.5, 0.65, 0.8, 0.95) for h in ("a", "b", "c")] + [
+    # YADE's other conventions one at a time at mu 0.5, and the mesh wall, from rel_a's state
+    ("rel_mu50_cut_a", 0.5, "thesis, no attraction", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_en51_a", 0.5, "thesis, bead-drum en 0.51", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_pournin_a", 0.5, "thesis, tangential pournin", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_tc20_a", 0.5, "thesis, plain law at tc/20", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_half_tc20_a", 0.5, "thesis, facet meff m/2, plain law at tc/20", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_surface_a", 0.5, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
+    ("rel_mu95_surface_a", 0.95, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
+]
 CHECK, AGAINST = "rel_L12_check", ("slip_thesis", "slip_thesis_replica")
 COLUMNS = ["study", "mu", "conventions", "wall", "history", "seconds_per_rpm", "release_rpm", "half_way_rpm",
            "froude", "detected"]

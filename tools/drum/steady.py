@@ -79,7 +79,7 @@ def parse_targets(pairs):
 
 # What a speed's trajectory depends on; the rest of the settings (targets, cap, rule) only decide
 # where it stops, so a checkpoint stays usable when they change.
-TRAJECTORY = ("period", "variables", "segment", "settle")
+TRAJECTORY = ("period", "variables", "segment", "settle", "fresh_start")
 
 
 def trajectory(settings):
@@ -95,6 +95,8 @@ def settings_of(args):
         settings["confidence"] = args.confidence
     if args.rule != "revolutions":  # likewise
         settings["rule"] = args.rule
+    if args.fresh_start:
+        settings["fresh_start"] = True
     return settings
 
 
@@ -378,6 +380,8 @@ class Study:
         variables = {**a.variables, "rpm": rpm, "period": a.period, "time": f"{seconds:.10g}",
                      "name": f"{a.name}/{rpm}rpm"}
         variables.update({"start": "restart", "restart": start} if start else {"start": "grid"})
+        if a.fresh_start and start and k == 1 and rpm == a.speeds[0]:
+            variables["history"] = "fresh"  # the start state's contact histories are other models'
         harness.say(WHO, f"{rpm} rpm, segment {k}: {seconds:g} s from {start.name if start else 'the grid'} ...")
         log = harness.drum(self.work / f"{rpm}rpm_seg{k}.log", np=a.np, **variables)
         # one run of the segment's steps, or the record (time, CPU, loops) would not match the series
@@ -596,6 +600,9 @@ def arguments(argv=None):
                         "targets as standard errors; obm: the 95 %% half-widths of tools/drum/estimator.py "
                         "(overlapping batch means, batch length from the series) over the steady window must meet "
                         "the targets with 10 effective degrees of freedom at least (default: %(default)s)")
+    p.add_argument("--fresh-start", action="store_true",
+                   help="the first segment from --start-state drops its contact histories (drum.in -var history "
+                        "fresh): for contact models other than the state's, e.g. tangential pournin from a history state")
     p.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"), default=[],
                    help="a drum.in -var for every run (repeatable), e.g. --var dt 2e-5 --var exact on")
     p.add_argument("--docs", default=str(harness.REPO / "docs" / "drum"),
