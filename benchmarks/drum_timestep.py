@@ -18,12 +18,17 @@ Written to --out (default benchmarks/results):
   effective dof; the difference from the reference, the difference's 95 % half-width and dof
   (Welch), whether they agree; the power to find a difference of 0.1 mm (lengths) or 0.1 deg
   (angles) at that noise (other metrics: the difference found with 80 % power); wall seconds per
-  simulated second on 2 ranks (the least disturbed segment's rate: the machine is shared), the
-  steady window and the run's state (done, capped, running, not settled);
+  simulated second on 2 ranks (from --cost's interleaved runs where measured, else the run's least
+  disturbed segment: the machine is shared), the steady window and the run's state (done, capped,
+  running, not settled);
+- with --cost, first drum_timestep_cost.csv: each law and step from the main job's shipped state,
+  interleaved over rounds, its wall time per simulated second and its ratio to tc/81 in the same
+  round (like for like: the same scene, machine and moment);
 - drum_timestep_<rpm>rpm.png: each metric's difference from the reference (95 % intervals) against
   that cost, one line per law, the thesis' timestep marked.
 
   benchmarks/drum_timestep.py                  # from the committed runs
+  benchmarks/drum_timestep.py --cost           # and first the interleaved cost, about 12 minutes
   benchmarks/drum_timestep.py --docs DIR --out DIR
 
 Needs: python3-numpy, python3-scipy, python3-matplotlib; drum_metrics.
@@ -45,6 +50,20 @@ SNAPSHOT = 0.05  # drum.in's dumpdt [s]
 DETECT = {"m": 1e-4, "deg": 0.1}  # the difference the power is stated for, by unit
 POWER = 0.8
 
+# The drum.in settings of each law at each step, as the campaign runs them (--cost)
+SETTINGS = {
+    ("plain", 81.3): {"dt": "1.23e-6", "exact": "off", "skin": "0.1"},
+    ("plain", 40): {"dt": "2.5e-6", "exact": "off", "skin": "0.2"},
+    ("plain", 20): {"dt": "5e-6", "exact": "off", "skin": "0.3"},
+    ("plain", 10): {"dt": "1e-5", "exact": "off", "skin": "0.3"},
+    ("exactRestitution", 10): {"dt": "1e-5", "exact": "on", "skin": "0.3"},
+    ("exactRestitution", 5): {"dt": "2e-5", "exact": "on", "skin": "0.3"},
+    ("exactRestitution", 4.08): {"dt": "2.45e-5", "exact": "on", "skin": "0.3"},
+    ("exactCollision", 10): {"dt": "1e-5", "exact": "off", "collision": "on", "tangential": "pournin",
+                             "history": "fresh", "skin": "0.3"},
+    ("exactCollision", 5): {"dt": "2e-5", "exact": "off", "collision": "on", "tangential": "pournin",
+                            "history": "fresh", "skin": "0.3"},
+}
 # (rpm, law, tc/dt, study name): the ladder as tools/drum/campaign.sh names its studies; the first
 # entry of each speed is its reference
 LADDER = [
@@ -65,7 +84,7 @@ LADDER = [
 LAWS = ("plain", "exactRestitution", "exactCollision")
 COLUMNS = ["rpm", "law", "tc_over_dt", "dt_s", "study", "state", "metric", "unit", "value", "hw95", "dof",
            "difference", "difference_hw95", "difference_dof", "agree", "power", "detect_80", "window_s",
-           "wall_s_per_simulated_s"]
+           "wall_s_per_simulated_s", "cost_from"]
 
 
 def cost(loops, dt):
@@ -114,20 +133,25 @@ def unit_of(column):
     return column.rsplit("_", 1)[1]
 
 
-def rows_of(docs):
-    """The CSV's rows, and the runs as read: {(rpm, law, ratio): run}."""
+def rows_of(docs, measured=None):
+    """The CSV's rows, and the runs as read: {(rpm, law, ratio): run}. `measured`: --cost's rows by
+    (law, tc/dt), whose interleaved cost replaces the runs' own where present."""
     rows, runs = [], {}
     for rpm, law, ratio, study in LADDER:
         run = read_run(docs, rpm, study)
         if run is None:
             continue
         dt = run["dt"]
+        if (law, ratio) in (measured or {}):
+            run["cost"], run["cost_source"] = measured[(law, ratio)]["wall_s_per_simulated_s"], "interleaved"
+        else:
+            run["cost_source"] = "segments"
         runs[(rpm, law, ratio)] = run
         ref = runs.get((rpm, *first_of(rpm)), {"intervals": {}})
         for column, iv in run["intervals"].items():
             r = {"rpm": rpm, "law": law, "tc_over_dt": ratio, "dt_s": dt, "study": study, "state": run["state"],
                  "metric": column, "unit": unit_of(column), "value": iv.mean, "hw95": iv.half_width, "dof": iv.dof,
-                 "window_s": run["window_s"], "wall_s_per_simulated_s": run["cost"]}
+                 "window_s": run["window_s"], "wall_s_per_simulated_s": run["cost"], "cost_from": run["cost_source"]}
             other = ref["intervals"].get(column)
             if run is not ref and other is not None and math.isfinite(iv.se) and math.isfinite(other.se):
                 d, hw, dof = estimator.compare(iv, other)
@@ -198,14 +222,59 @@ def chart(rows, rpm, path):
     return True
 
 
+def measure_cost(out, rounds, simulated):
+    """--cost: each law and step of SETTINGS run for `simulated` seconds from the main job's shipped
+    state (the 24 mm scene at 21 rpm, 2 ranks), interleaved over `rounds`: wall seconds of LIGGGHTS'
+    loop per simulated second, and the ratio to tc/81 in the same round (the machine is shared: a
+    round's runs saw the same load). Written to OUT/drum_timestep_cost.csv."""
+    def one(key):
+        law, ratio = key
+        name = f"drum_timestep_cost/{law}_{ratio:g}"
+        variables = {**SETTINGS[key], "time": f"{simulated:.10g}", "dumpdt": f"{simulated:.10g}", "name": name}
+        if "history" in variables:
+            variables.update(start="restart", restart=shipped_state())
+        log = harness.drum(harness.post(name + ".log"), np=2, **variables)
+        return log.loop_time / (log.steps * float(SETTINGS[key]["dt"]))
+    per_round = harness.interleaved({key: (lambda key=key: one(key)) for key in SETTINGS}, rounds,
+                                    progress=lambda text: harness.say("drum_timestep", text))
+    reference = per_round[("plain", 81.3)]
+    rows = [{"law": law, "tc_over_dt": ratio, "collision": "off", "tangential": "history",
+             **{k: v for k, v in SETTINGS[(law, ratio)].items() if k != "history"},
+             "wall_s_per_simulated_s": harness.median(v), "low": min(v), "high": max(v),
+             "ratio_to_tc81": harness.median_ratio(v, reference), "rounds": rounds, "simulated_s": simulated}
+            for (law, ratio), v in per_round.items()]
+    harness.write_csv(Path(out) / "drum_timestep_cost.csv", rows)
+    return rows
+
+
+def shipped_state():
+    """inputs/drum_L24_21rpm.restart.gz unpacked into post/ (the main job's start, for a fresh start)."""
+    import gzip
+    import shutil
+    plain = harness.post("drum_timestep_cost", "start.restart")
+    if not plain.exists():
+        with gzip.open(harness.REPO / "inputs" / "drum_L24_21rpm.restart.gz", "rb") as f, open(plain, "wb") as o:
+            shutil.copyfileobj(f, o)
+    return plain
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--docs", default=str(HERE.parent / "docs" / "drum"), help="the drum studies (default: docs/drum)")
     p.add_argument("--out", default=str(HERE / "results"), help="where the CSV and charts go")
+    p.add_argument("--cost", action="store_true", help="first measure each law's cost (measure_cost), about 10 "
+                                                       "minutes on 2 cores with the defaults")
+    p.add_argument("--rounds", type=int, default=3)
+    p.add_argument("--simulated", type=float, default=0.01, help="--cost: simulated seconds per run")
     a = p.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows, runs = rows_of(Path(a.docs))
+    if a.cost:
+        measure_cost(out, a.rounds, a.simulated)
+    measured = {}
+    if (out / "drum_timestep_cost.csv").exists():
+        measured = {(r["law"], r["tc_over_dt"]): r for r in harness.read_csv(out / "drum_timestep_cost.csv")}
+    rows, runs = rows_of(Path(a.docs), measured)
     harness.write_csv(out / "drum_timestep.csv", rows, COLUMNS)
     for rpm in sorted({r["rpm"] for r in rows}):
         if not chart(rows, rpm, out / f"drum_timestep_{rpm}rpm.png"):
