@@ -291,7 +291,7 @@ steady --name slip_tc20 --speeds 27,28,29,30,31,32,33,34,35 --start-state docs/d
 cap=8 ladder dt42_tc40 2.5e-6 off 0.5 0.2 42
 cap=8 ladder dt42_tc20 5e-6 off 0.5 0.3 42
 if ready docs/drum/study_yade/21rpm/state.restart.gz; then
-  steady --name study_yade --speeds 21,28,35 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
+  steady --name study_yade --speeds 21,28,35,42,49,56,63 --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
     "${yade[@]}" --segment 2 --cap 40
 fi
 if [[ ${#now[@]} -eq 0 ]]; then
@@ -329,3 +329,6 @@ if [[ ${#now[@]} -eq 0 ]]; then
   fi
   save "Drum: study_thesis against study_bound, speed by speed" docs/drum/histories_bound
 fi
+# Fig. 3.2-3.4 under YADE's rules, its two slowest speeds: the chain from the grid as the thesis' own
+# (7 -> 14 rpm; study_yade runs 21 rpm on from the thesis' 21 rpm state)
+steady --name study_yade_low --speeds 7,14 "${yade[@]}" --segment 2 --cap 60 --rule obm
