@@ -58,6 +58,28 @@ class Release(unittest.TestCase):
         self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": 33.0}])[0], 0.024)
         self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": math.nan}])[0], 0.024)
 
+    def test_the_rigid_bed_estimate(self):
+        # the segment's area and centroid against a numerical integration over the drum's section
+        eps, s = release.segment(0.40)
+        self.assertAlmostEqual((2 * eps - math.sin(2 * eps)) / (2 * math.pi), 0.40, places=9)
+        n, area, moment = 4000, 0.0, 0.0
+        for i in range(n):  # strips across the segment below the chord at depth cos(eps) (R = 1)
+            z = -1.0 + (1.0 - math.cos(eps)) * (i + 0.5) / n
+            width = 2.0 * math.sqrt(1.0 - z * z)
+            area += width * (1.0 - math.cos(eps)) / n
+            moment += z * width * (1.0 - math.cos(eps)) / n
+        self.assertAlmostEqual(area / math.pi, 0.40, places=5)
+        self.assertAlmostEqual(-moment / area, s, places=5)
+        # half full: eps = pi/2, s = 4/(3 pi), eps / sin(eps) = pi/2; at 30 deg and no rotation
+        # mu = s sin 30 / ((pi/2) cos 30) = 0.156
+        self.assertAlmostEqual(release.friction_needed(30.0, 0.0, fill=0.5),
+                               4 / (3 * math.pi) * 0.5 / (math.pi / 2 * math.cos(math.radians(30))), places=9)
+        self.assertEqual(release.friction_needed(0.0, 21.0), 0.0)
+        # the drum's rotation presses the bed on the wall: less friction needed at the same angle
+        self.assertLess(release.friction_needed(35.0, 60.0), release.friction_needed(35.0, 20.0))
+        self.assertAlmostEqual(release.rigid_release(0.3, lambda rpm: 20.0 + rpm),
+                               next(k / 10 for k in range(1, 1201) if release.friction_needed(20.0 + k / 10, k / 10) > 0.3))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -10,7 +10,10 @@ with its last speed, as a lower bound.
 
 The chart: release speed against the bead-drum friction, one point per history, the mean of each
 setting's histories with its 95 % interval (Student's t across histories), and the Froude number
-omega^2 R / g at that speed on the right-hand axis.
+omega^2 R / g at that speed on the right-hand axis. Beside them a friction-based estimate: the bed
+as a rigid circular segment (the fill's), its chord at the carried bed's measured angle, held by
+Coulomb friction at the wall (`friction_needed`); it lets go where the friction it needs reaches
+the bead-drum mu. The carried angle is study_thesis' at 7-28 rpm, a straight line in rpm beyond.
 
 The ramps are listed in RAMPS (study, bead-drum mu, conventions, wall, history, seconds per rpm);
 a study not yet run is left out.
@@ -61,6 +64,53 @@ COLUMNS = ["study", "mu", "conventions", "wall", "history", "seconds_per_rpm", "
            "froude", "detected"]
 
 
+def segment(fill):
+    """(half-angle eps [rad], centroid distance from the axis over R) of the circular segment that
+    fills `fill` of the drum: (2 eps - sin 2 eps) / (2 pi) = fill; s / R = 4 sin^3 eps / (3 (2 eps -
+    sin 2 eps))."""
+    lo, hi = 0.0, math.pi
+    for _ in range(100):
+        eps = 0.5 * (lo + hi)
+        lo, hi = (eps, hi) if (2 * eps - math.sin(2 * eps)) / (2 * math.pi) < fill else (lo, eps)
+    eps = 0.5 * (lo + hi)
+    return eps, 4.0 * math.sin(eps) ** 3 / (3.0 * (2 * eps - math.sin(2 * eps)))
+
+
+def friction_needed(angle_deg, rpm, fill=0.40):
+    """The wall friction a rigid carried bed needs: its weight's torque about the axis, M g s sin(theta),
+    held by friction mu times the wall's normal forces at radius R, whose sum is at least their
+    radial part, M (g cos(theta) + omega^2 s), times eps / sin(eps) (a pressure uniform along the
+    wetted arc): mu = (s/R) sin(theta) / ((eps / sin eps) (cos(theta) + Fr s/R)), Fr = omega^2 R / g.
+    No flow, no rolling: only Coulomb sliding of the whole bed on the wall."""
+    eps, s = segment(fill)
+    theta = math.radians(angle_deg)
+    return s * math.sin(theta) / ((eps / math.sin(eps)) * (math.cos(theta) + froude(rpm) * s))
+
+
+def carried_angle(docs):
+    """angle(rpm) of study_thesis' carried speeds (bed turn >= 0.95): the straight line through them
+    (least squares), or None without two."""
+    path = docs / "study_thesis.csv"
+    if not path.exists():
+        return None
+    rows = [r for r in harness.read_csv(path) if r["bed_turn_1"] >= 0.95]
+    if len(rows) < 2:
+        return None
+    x, y = [r["rpm"] for r in rows], [r["angle_deg"] for r in rows]
+    mx, my = statistics.fmean(x), statistics.fmean(y)
+    slope = sum((a - mx) * (b - my) for a, b in zip(x, y)) / sum((a - mx) ** 2 for a in x)
+    return lambda rpm: my + slope * (rpm - mx)
+
+
+def rigid_release(mu, angle, top=120.0):
+    """The lowest speed [rpm] up to `top` at which the rigid bed needs more friction than mu, or nan."""
+    for k in range(1, int(top * 10) + 1):
+        rpm = k / 10.0
+        if friction_needed(angle(rpm), rpm) > mu:
+            return rpm
+    return math.nan
+
+
 def froude(rpm):
     """omega^2 R / g of the drum at this speed."""
     return (2.0 * math.pi * rpm / 60.0) ** 2 * R / G
@@ -107,7 +157,7 @@ def interval(values, confidence=0.95):
     return mean, float(stats.t.ppf(0.5 + confidence / 2.0, n - 1)) * statistics.stdev(values) / math.sqrt(n)
 
 
-def chart(rows, path):
+def chart(rows, path, angle=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -119,6 +169,14 @@ def chart(rows, path):
         x = mu + 0.01 * (k % 3 - 1)  # settings at one mu side by side
         line = ax.errorbar([x], [mean], yerr=[hw if math.isfinite(hw) else 0.0], fmt="o", capsize=4, label=label)
         ax.plot([x] * len(values), values, "x", color=line[0].get_color())
+    if angle is not None:
+        needed = [(rpm, friction_needed(angle(rpm), rpm)) for rpm in range(7, 64, 7)]
+        most = max(mu for _, mu in needed)
+        held = sorted({r["mu"] for r in rows if r["mu"] > most})
+        ax.text(0.98, 0.02, "rigid bed held by wall friction needs mu " + ", ".join(
+                f"{mu:.2f} at {rpm}" for rpm, mu in needed[::2]) + " rpm" +
+                (f":\nwith mu {', '.join(f'{m:g}' for m in held)} it would not let go below 63 rpm" if held else ""),
+                transform=ax.transAxes, ha="right", va="bottom", fontsize=7)
     ax.set_xlabel("bead-drum friction mu")
     ax.set_ylabel("release speed [rpm] (onset on the ramp clock)")
     right = ax.secondary_yaxis("right", functions=(froude, lambda fr: 60.0 / (2.0 * math.pi) * (abs(fr) * G / R) ** 0.5))
@@ -165,8 +223,12 @@ def main(argv=None):
         return 0
     out = Path(a.out)
     harness.write_csv(out.with_suffix(".csv"), rows, COLUMNS)
+    angle = carried_angle(Path(a.docs))
     if rows:
-        chart(rows, out.with_suffix(".png"))
+        chart(rows, out.with_suffix(".png"), angle)
+    if angle is not None:
+        harness.say("release", "a rigid bed held by wall friction needs mu " + ", ".join(
+            f"{friction_needed(angle(rpm), rpm):.3f} at {rpm} rpm" for rpm in (21, 28, 35, 63)))
     for key, values in groups(rows).items():
         mean, hw = interval(values)
         harness.say("release", f"mu {key[0]:g}, {key[1]}, {key[2]}, {key[3]:g} s/rpm: {mean:.2f} ± {hw:.2f} rpm "
