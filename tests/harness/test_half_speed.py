@@ -50,6 +50,16 @@ class HalfSpeed(unittest.TestCase):
         failed = {(r["rpm"], r["metric"]) for r in out if r["metric"] and not r["agree"]}
         self.assertEqual(failed, {(35.0, "Hd"), (49.0, "Hd")})
 
+    def test_the_bed_turns_term_is_its_own_half_width(self):
+        # a bed turn known to +-0.002 (95 %) at 1.5 dof moves the reading by slope x rpm x 0.002
+        table = self.table()
+        for r in table.values():
+            r["bed_turn_dof"] = 1.5
+        out = [r for r in half_speed.compare(table) if r["metric"] == "angle" and r["rpm"] == 35.0][0]
+        lo, hi = 7 * 0.999, 21 * 0.997  # the three carried rotations nearest 35 x 0.45: 7, 14, 21 rpm
+        slope = (curve("angle_deg", hi) - curve("angle_deg", lo)) / (hi - lo)
+        self.assertAlmostEqual(out["bed_turn_term"], abs(slope) * 35.0 * 0.002, delta=0.05 * abs(slope) * 35.0 * 0.002)
+
     def test_the_page_answers_first(self):
         out = half_speed.compare(self.table({"Hd_m": 0.001}))
         text = half_speed.page("synthetic", out)

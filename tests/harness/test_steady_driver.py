@@ -239,6 +239,42 @@ class Restore(unittest.TestCase):
             self.assertEqual(done["settings"], study.settings)
 
 
+class VerdictUnderAChangedRule(unittest.TestCase):
+    """A speed capped (or done) under one stop rule is decided again when the rule changed: a higher
+    cap lets it go on; the same rule leaves the verdict standing."""
+
+    class Ran(Exception):
+        pass
+
+    def run_with(self, cap):
+        with tempfile.TemporaryDirectory() as d:
+            old = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5", "--cap", "20"]))
+            study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5", "--cap", str(cap)]))
+            study.work = Path(d) / "post"
+            study.work.mkdir()
+            start = Path(d) / "start.restart"
+            steady.harness.write_json(study.work / "21rpm_progress.json", {
+                "settings": old.settings, "start": str(start), "start_sha256": "abc", "segments": 10,
+                "simulated_s": 20.0, "cpu_s": 1.0, "beads": 1, "last_step": -1, "state": str(start),
+                "outcome": "capped"})
+            study.check = lambda rpm: {"done": 0.0, "settled": 1.0, "steady_from_s": 1.0}
+
+            def segment(*args):
+                raise self.Ran()
+            study.segment = segment
+            try:
+                outcome, _, _ = study.run_speed(21, start, "abc")
+                return outcome
+            except self.Ran:
+                return "ran another segment"
+
+    def test_a_higher_cap_goes_on(self):
+        self.assertEqual(self.run_with(60), "ran another segment")
+
+    def test_the_same_rule_leaves_it_standing(self):
+        self.assertEqual(self.run_with(20), "capped")
+
+
 class ObmRule(unittest.TestCase):
     IV = steady.estimator.Interval
 
@@ -268,12 +304,31 @@ class ObmRule(unittest.TestCase):
         whole = steady.window_intervals(rows, 0.0, 0.05, {"Hc": "Hc_m"})["Hc"]
         self.assertGreater(abs(whole.mean - iv.mean), 0.005)  # the start, a sixth of the series, would shift it
 
+    def test_a_finished_rows_columns(self):
+        metrics = [{"key": "Hc", "column": "Hc_m", "se_column": "Hc_se_m", "unit": "m"},
+                   {"key": "surface_velocity", "column": "surface_velocity_mps", "se_column": "surface_velocity_se_mps",
+                    "unit": "m/s"}]
+        rng = steady.estimator.np.random.default_rng(3)
+        snaps = [{"time_s": 0.05 * k, "Hc_m": -0.097 + 1e-4 * rng.normal(), "surface_velocity_mps": 1.15 + 0.01 * rng.normal()}
+                 for k in range(400)]
+        row = steady.obm_columns({"batches": 5.0, "Hc_m": -0.5, "Hc_se_m": 1.0}, snaps, 2.0, 0.05, metrics)
+        self.assertTrue(math.isnan(row["batches"]))
+        self.assertAlmostEqual(row["Hc_m"], sum(r["Hc_m"] for r in snaps[40:]) / 360, places=12)
+        self.assertIn("surface_velocity_hw95_mps", row)  # as the value's column spells the unit
+        self.assertGreaterEqual(row["Hc_dof"], 10)
+        # capped before it settled: no steady window, the batch means stay
+        kept = steady.obm_columns({"batches": 5.0, "Hc_m": -0.5, "Hc_se_m": 1.0}, snaps, math.nan, 0.05, metrics)
+        self.assertEqual((kept["batches"], kept["Hc_m"]), (5.0, -0.5))
+
     def test_time_still_needed_from_the_square_root_law(self):
         targets = {"Hc": 5e-5}
         # twice the target after 2 s averaged: 4 times as long, 6 s more
         self.assertAlmostEqual(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 0)}, targets, 2.0), 6.0)
         self.assertEqual(steady.obm_still_needed({"Hc": self.IV(0, 4e-5, 12, 1, 0)}, targets, 2.0), 0.0)
         self.assertTrue(math.isnan(steady.obm_still_needed({}, targets, 2.0)))
+        nan = self.IV(0, math.nan, math.nan, math.nan, math.nan)
+        self.assertTrue(math.isnan(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 0), "angle": nan},
+                                                           {"Hc": 5e-5, "angle": 0.05}, 2.0)))
 
     def test_the_rule_is_a_setting_only_where_it_is_not_the_default(self):
         plain = steady.settings_of(steady.arguments(["--var", "dt", "2e-5"]))

@@ -80,7 +80,7 @@ def compare(table):
         hi = min((c for c in carried if c >= weff), default=carried[-1])
         if hi == lo and weff > carried[-1]:
             lo = carried[-2]
-        turn_se, _ = se_of(r, "bed_turn", "1")
+        turn_hw = float(r["bed_turn_hw95_1"])  # its own 95 % half-width (at its own dof)
         for key, col, scale, unit, label in METRICS:
             ys = [at[c][col] for c in near]
             weights = lagrange(near, weff)
@@ -95,7 +95,7 @@ def compare(table):
             se2 = se_obs ** 2 + se_pred2
             dof = se2 ** 2 / (se_obs ** 4 / dof_obs + se_pred2 ** 2 / dof_pred)
             model = abs(predicted - linear)
-            turn = abs(slope) * w * float(stats.t.ppf(0.975, 10)) * turn_se
+            turn = abs(slope) * w * turn_hw
             half_width = float(stats.t.ppf(0.975, dof)) * math.sqrt(se2) + model + turn
             diff = r[col] - predicted
             out.append({"rpm": w, "bed_turn": r["bed_turn_1"], "equivalent_rpm": weff, "metric": key, "label": label,

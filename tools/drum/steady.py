@@ -165,7 +165,8 @@ def progress_note(still, loops, dt, what="for the minimum of batches"):
     if not math.isfinite(still):
         return "not settled yet"
     if still <= 0:
-        return "enough batches; the error targets decide"
+        return ("enough batches; the error targets decide" if what == "for the minimum of batches"
+                else "the half-widths meet their targets; the effective degrees of freedom decide")
     steps = sum(lp["steps"] for lp in loops)
     if not steps:
         return f"at least {still:.3g} s simulated more"
@@ -189,6 +190,23 @@ def window_intervals(snapshots, steady_from, snapshot, columns):
     return {key: estimator.mean_interval([r[c] for r in window], snapshot, CONFIDENCE) for key, c in columns.items()}
 
 
+def obm_columns(row, snapshots, steady_from, snapshot, metrics):
+    """--rule obm: a finished speed's row takes, for every metric (`harness.drum_metric_table()`),
+    the estimator's mean, standard error, 95 % half-width (<key>_hw95_<unit as its column spells
+    it>) and effective dof over the whole steady window, in place of the batch means. A speed
+    capped before it settled has no steady window: its row keeps the batch means."""
+    if not math.isfinite(steady_from):
+        return row
+    intervals = window_intervals(snapshots, steady_from, snapshot, {m["key"]: m["column"] for m in metrics})
+    row["batches"] = float("nan")
+    for m in metrics:
+        iv = intervals[m["key"]]
+        row[m["column"]], row[m["se_column"]] = iv.mean, iv.se
+        unit = m["column"].rsplit("_", 1)[1]  # (m/s: mps)
+        row[f"{m['key']}_hw95_{unit}"], row[f"{m['key']}_dof"] = iv.half_width, iv.dof
+    return row
+
+
 def obm_verdict(intervals, targets, simulated, cap):
     """--rule obm, after a segment: 'done' where every target metric's 95 % half-width is within
     its target at MIN_DOF effective degrees of freedom or more, else 'capped' or 'continue'."""
@@ -200,9 +218,10 @@ def obm_verdict(intervals, targets, simulated, cap):
 def obm_still_needed(intervals, targets, averaged):
     """Simulated seconds still needed, about, for the half-widths to reach their targets (they fall
     as the square root of the time averaged); nan before the series has settled."""
-    if not intervals or not averaged > 0:
+    ratios = [(iv.half_width / targets[k]) ** 2 for k, iv in intervals.items()]
+    if not intervals or not averaged > 0 or not all(math.isfinite(r) for r in ratios):
         return float("nan")
-    worst = max((iv.half_width / targets[k]) ** 2 for k, iv in intervals.items())
+    worst = max(ratios)
     return max(averaged * (worst - 1.0), 0.0) if math.isfinite(worst) else float("nan")
 
 
@@ -434,15 +453,21 @@ class Study:
             done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha, "segments": 0,
                     "simulated_s": 0.0, "cpu_s": 0.0, "beads": 0, "last_step": -1, "state": None}
         done.setdefault("start_sha256", start_sha)
-        if done.get("outcome", "continue") == "continue":
-            done["settings"] = self.settings  # a changed stop rule applies from here on
         for step, f in harness.snapshots(self.prefix(rpm)):
             if done["last_step"] >= 0 and step > done["last_step"]:
                 f.unlink()
         if done["last_step"] >= 0 and self.cache(rpm).exists():
             trim_cache(self.cache(rpm), self.cache(rpm), done["last_step"])
-        outcome = done.get("outcome", "continue")  # a verdict reached before an interruption stands
+        outcome = done.get("outcome", "continue")  # a verdict reached before an interruption stands ...
         row = None
+        if outcome != "continue" and done.get("settings") != self.settings:
+            # ... unless the stop rule changed since: decided again from the series as it is
+            row = self.check(rpm)
+            intervals = self.intervals(rpm, row) if a.rule == "obm" else None
+            outcome = done["outcome"] = (verdict(row, done["simulated_s"], a.cap) if intervals is None
+                                         else obm_verdict(intervals, a.targets, done["simulated_s"], a.cap))
+            harness.say(WHO, f"{rpm} rpm: its verdict decided again under the changed stop rule: {outcome}")
+        done["settings"] = self.settings
         while outcome == "continue":
             k = done["segments"] + 1
             grid = done["state"] is None and start is None
@@ -511,16 +536,7 @@ class Study:
         for m in harness.drum_metric_table():
             row[m["column"]], row[m["se_column"]] = average[m["column"]], average[m["se_column"]]
         if a.rule == "obm":
-            # the whole steady window, every metric: the estimator's mean, standard error, 95 % half-width
-            # and effective degrees of freedom (the batch means' columns above are replaced)
-            table = harness.drum_metric_table()
-            intervals = window_intervals(harness.read_csv(self.cache(rpm)), steady_from, self.dumpdt,
-                                         {m["key"]: m["column"] for m in table})
-            row["batches"] = float("nan")
-            for m in table:
-                iv = intervals[m["key"]]
-                row[m["column"]], row[m["se_column"]] = iv.mean, iv.se
-                row[f"{m['key']}_hw95_{m['unit']}"], row[f"{m['key']}_dof"] = iv.half_width, iv.dof
+            obm_columns(row, harness.read_csv(self.cache(rpm)), steady_from, self.dumpdt, harness.drum_metric_table())
         table = self.docs.with_suffix(".csv")
         rows = [r for r in (harness.read_csv(table) if table.exists() else []) if r["rpm"] != rpm]
         rows = sorted(rows + [row], key=lambda r: r["rpm"])
