@@ -75,6 +75,16 @@ class Release(unittest.TestCase):
         self.assertAlmostEqual(release.friction_needed(30.0, 0.0, fill=0.5),
                                4 / (3 * math.pi) * 0.5 / (math.pi / 2 * math.cos(math.radians(30))), places=9)
         self.assertEqual(release.friction_needed(0.0, 21.0), 0.0)
+        # all wall force radial: the radial sum is exactly the load's radial part (spread 1)
+        self.assertAlmostEqual(release.friction_needed(30.0, 0.0, fill=0.5, spread=1.0),
+                               4 / (3 * math.pi) * math.tan(math.radians(30)), places=9)
+        # the least friction any wall-force spread needs: none for an untilted bed, more with the tilt,
+        # below the uniform and radial figures, and converged in the arc's discretisation
+        self.assertLess(release.friction_bound(0.0, 21.0, points=60), 1e-6)
+        b30, b40 = release.friction_bound(30.0, 21.0, points=90), release.friction_bound(40.0, 21.0, points=90)
+        self.assertLess(b30, b40)
+        self.assertLess(b40, release.friction_needed(40.0, 21.0))
+        self.assertAlmostEqual(release.friction_bound(40.0, 21.0, points=180), b40, delta=0.03 * b40)
         # the drum's rotation presses the bed on the wall: less friction needed at the same angle
         self.assertLess(release.friction_needed(35.0, 60.0), release.friction_needed(35.0, 20.0))
         self.assertAlmostEqual(release.rigid_release(0.3, lambda rpm: 20.0 + rpm),

@@ -12,8 +12,11 @@ The chart: release speed against the bead-drum friction, one point per history, 
 setting's histories with its 95 % interval (Student's t across histories), and the Froude number
 omega^2 R / g at that speed on the right-hand axis. Beside them a friction-based estimate: the bed
 as a rigid circular segment (the fill's), its chord at the carried bed's measured angle, held by
-Coulomb friction at the wall (`friction_needed`); it lets go where the friction it needs reaches
-the bead-drum mu. The carried angle is study_thesis' at 7-28 rpm, a straight line in rpm beyond.
+Coulomb friction at the wall. What it needs depends on how the wall's forces spread along the
+wetted arc, which a rigid bed leaves open: at least `friction_bound` (the least mu for which any
+spread of pressure and friction holds it, a linear programme), and `friction_needed` where the
+wall's force were all radial (`spread` 1) or its pressure uniform (eps / sin eps). The carried
+angle is study_thesis' at 7-28 rpm, a straight line in rpm beyond (read at 21-35 rpm).
 
 The ramps are listed in RAMPS (study, bead-drum mu, conventions, wall, history, seconds per rpm);
 a study not yet run is left out.
@@ -76,15 +79,50 @@ def segment(fill):
     return eps, 4.0 * math.sin(eps) ** 3 / (3.0 * (2 * eps - math.sin(2 * eps)))
 
 
-def friction_needed(angle_deg, rpm, fill=0.40):
-    """The wall friction a rigid carried bed needs: its weight's torque about the axis, M g s sin(theta),
-    held by friction mu times the wall's normal forces at radius R, whose sum is at least their
-    radial part, M (g cos(theta) + omega^2 s), times eps / sin(eps) (a pressure uniform along the
-    wetted arc): mu = (s/R) sin(theta) / ((eps / sin eps) (cos(theta) + Fr s/R)), Fr = omega^2 R / g.
-    No flow, no rolling: only Coulomb sliding of the whole bed on the wall."""
+def friction_needed(angle_deg, rpm, fill=0.40, spread=None):
+    """Friction over normal force at the wall of a rigid carried bed: its weight's torque about the
+    axis, M g s sin(theta), held by friction at radius R, over the wall's normal forces, whose sum
+    is `spread` (default eps / sin(eps): a pressure uniform along the wetted arc; 1: all radial)
+    times their radial part M (g cos(theta) + omega^2 s): mu = (s/R) sin(theta) / (spread
+    (cos(theta) + Fr s/R)), Fr = omega^2 R / g. (A uniform pressure and friction do not balance the
+    weight's downhill part as well: an estimate, not a bound; see friction_bound.)"""
     eps, s = segment(fill)
     theta = math.radians(angle_deg)
-    return s * math.sin(theta) / ((eps / math.sin(eps)) * (math.cos(theta) + froude(rpm) * s))
+    spread = eps / math.sin(eps) if spread is None else spread
+    return s * math.sin(theta) / (spread * (math.cos(theta) + froude(rpm) * s))
+
+
+def friction_bound(angle_deg, rpm, fill=0.40, points=180):
+    """The least wall friction mu for which some spread of pressure p >= 0 and friction |f| <= mu p
+    along the wetted arc holds a rigid bed (the fill's segment, chord at angle_deg, turning with the
+    drum at rpm) in equilibrium, forces and torque (a linear programme per mu, bisected): below it
+    no wall can hold the bed; above it one can, if the wall's forces spread right. Units M g = R = 1."""
+    from scipy.optimize import linprog
+    eps, s = segment(fill)
+    theta = math.radians(angle_deg)
+    phi = [-eps + 2 * eps * i / (points - 1) for i in range(points)]  # the ends included
+    # the bed's frame: its centroid at (0, -s); the wall at (sin phi, -cos phi) pushes inwards,
+    # (-sin phi, cos phi), and rubs along (cos phi, sin phi); gravity tilted by theta, centrifugal out
+    load = (-math.sin(theta), -math.cos(theta) - froude(rpm) * s)
+    torque = -s * math.sin(theta)  # of gravity about the axis (z of (0, -s) x load)
+    a_eq = [[-math.sin(f) for f in phi] + [math.cos(f) for f in phi],
+            [math.cos(f) for f in phi] + [math.sin(f) for f in phi],
+            [0.0] * points + [1.0] * points]
+    b_eq = [-load[0], -load[1], -torque]
+
+    def holds(mu):
+        a_ub = [[(-mu if j == i else 0.0) for j in range(points)] + [(1.0 if j == i else 0.0) for j in range(points)]
+                for i in range(points)] + \
+               [[(-mu if j == i else 0.0) for j in range(points)] + [(-1.0 if j == i else 0.0) for j in range(points)]
+                for i in range(points)]
+        r = linprog([0.0] * (2 * points), A_ub=a_ub, b_ub=[0.0] * (2 * points), A_eq=a_eq, b_eq=b_eq,
+                    bounds=[(0, None)] * points + [(None, None)] * points, method="highs")
+        return r.status == 0
+    lo, hi = 0.0, 2.0
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if holds(mid) else (mid, hi)
+    return hi
 
 
 def carried_angle(docs):
@@ -170,12 +208,9 @@ def chart(rows, path, angle=None):
         line = ax.errorbar([x], [mean], yerr=[hw if math.isfinite(hw) else 0.0], fmt="o", capsize=4, label=label)
         ax.plot([x] * len(values), values, "x", color=line[0].get_color())
     if angle is not None:
-        needed = [(rpm, friction_needed(angle(rpm), rpm)) for rpm in range(7, 64, 7)]
-        most = max(mu for _, mu in needed)
-        held = sorted({r["mu"] for r in rows if r["mu"] > most})
-        ax.text(0.98, 0.02, "rigid bed held by wall friction needs mu " + ", ".join(
-                f"{mu:.2f} at {rpm}" for rpm, mu in needed[::2]) + " rpm" +
-                (f":\nwith mu {', '.join(f'{m:g}' for m in held)} it would not let go below 63 rpm" if held else ""),
+        text = "; ".join(f"{rpm} rpm: {friction_bound(angle(rpm), rpm):.2f}-{friction_needed(angle(rpm), rpm, spread=1):.2f}"
+                         for rpm in (21, 28, 35))
+        ax.text(0.98, 0.02, "wall friction a rigid bed needs (least possible - all wall force radial):\n" + text,
                 transform=ax.transAxes, ha="right", va="bottom", fontsize=7)
     ax.set_xlabel("bead-drum friction mu")
     ax.set_ylabel("release speed [rpm] (onset on the ramp clock)")
@@ -227,8 +262,9 @@ def main(argv=None):
     if rows:
         chart(rows, out.with_suffix(".png"), angle)
     if angle is not None:
-        harness.say("release", "a rigid bed held by wall friction needs mu " + ", ".join(
-            f"{friction_needed(angle(rpm), rpm):.3f} at {rpm} rpm" for rpm in (21, 28, 35, 63)))
+        harness.say("release", "the wall friction a rigid bed needs, least possible / uniform pressure / all radial: " +
+                    "; ".join(f"{rpm} rpm {friction_bound(angle(rpm), rpm):.3f} / {friction_needed(angle(rpm), rpm):.3f}"
+                              f" / {friction_needed(angle(rpm), rpm, spread=1):.3f}" for rpm in (21, 28, 35)))
     for key, values in groups(rows).items():
         mean, hw = interval(values)
         harness.say("release", f"mu {key[0]:g}, {key[1]}, {key[2]}, {key[3]:g} s/rpm: {mean:.2f} ± {hw:.2f} rpm "
