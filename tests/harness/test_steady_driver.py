@@ -320,14 +320,26 @@ class ObmRule(unittest.TestCase):
         kept = steady.obm_columns({"batches": 5.0, "Hc_m": -0.5, "Hc_se_m": 1.0}, snaps, math.nan, 0.05, metrics)
         self.assertEqual((kept["batches"], kept["Hc_m"]), (5.0, -0.5))
 
+    T10 = float(steady.estimator.stats.t.ppf(0.975, 10))
+
+    def test_the_target_bounds_the_standard_error_at_any_dof(self):
+        # a half-width of 0.0535 at 40 dof hides a larger standard error than at 10: not done
+        targets = {"Hc": 0.0535}
+        t40 = float(steady.estimator.stats.t.ppf(0.975, 40))
+        self.assertEqual(steady.obm_verdict({"Hc": self.IV(0, 0.0535, 40, 1, 0.0535 / t40)}, targets, 3.0, 20.0),
+                         "continue")
+        self.assertEqual(steady.obm_verdict({"Hc": self.IV(0, 0.05, 40, 1, 0.0535 / self.T10)}, targets, 3.0, 20.0),
+                         "done")
+
     def test_time_still_needed_from_the_square_root_law(self):
         targets = {"Hc": 5e-5}
         # twice the target after 2 s averaged: 4 times as long, 6 s more
-        self.assertAlmostEqual(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 0)}, targets, 2.0), 6.0)
-        self.assertEqual(steady.obm_still_needed({"Hc": self.IV(0, 4e-5, 12, 1, 0)}, targets, 2.0), 0.0)
+        self.assertAlmostEqual(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 10, 1, 1e-4 / self.T10)}, targets, 2.0),
+                               6.0)
+        self.assertEqual(steady.obm_still_needed({"Hc": self.IV(0, 4e-5, 10, 1, 4e-5 / self.T10)}, targets, 2.0), 0.0)
         self.assertTrue(math.isnan(steady.obm_still_needed({}, targets, 2.0)))
         nan = self.IV(0, math.nan, math.nan, math.nan, math.nan)
-        self.assertTrue(math.isnan(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 0), "angle": nan},
+        self.assertTrue(math.isnan(steady.obm_still_needed({"Hc": self.IV(0, 1e-4, 12, 1, 4e-5), "angle": nan},
                                                            {"Hc": 5e-5, "angle": 0.05}, 2.0)))
 
     def test_the_rule_is_a_setting_only_where_it_is_not_the_default(self):

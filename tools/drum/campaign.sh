@@ -175,9 +175,9 @@ against_chain() {  # NAME KIND OUT MESSAGE, then steady.py's options for the stu
 # one timestep with the nominal law (skin: the neighbour skin in bead diameters; a thinner one
 # changes only round-off, never which contacts are computed, and has fewer pairs to check where
 # beads move little per step: benchmarks/README.md, "Neighbour skin at the thesis' tc/81")
-# Each ends where its 95 % half-widths (tools/drum/estimator.py, 10 dof at least) are within
-# Hc 0.0535 mm and angle 0.0535 deg: two runs at that detect a difference of 0.1 mm / 0.1 deg
-# between them with 80 % power (estimator.half_width_for_power). The stop rule changed after
+# Each ends where, at 10 dof at least, its 95 % half-widths at 10 dof (tools/drum/estimator.py) are
+# within Hc 0.0535 mm and angle 0.0535 deg: two runs at that detect a difference of 0.1 mm / 0.1 deg
+# between them with 80 % power or more (estimator.half_width_for_power). The stop rule changed after
 # tc/81 had run 0.75 s; its segments are kept (steady.py resumes a trajectory under a new rule).
 power_rule=(--rule obm --target Hc=5.35e-5 --target angle=0.0535)
 timestep() {

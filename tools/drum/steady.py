@@ -11,8 +11,8 @@ start, by batch means over whole drum revolutions, have standard errors within -
 Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reaches --cap
 simulated seconds stops there, flagged. With --rule obm the error bars are tools/drum/estimator.py's
 instead (overlapping batch means, batch length from the series): the speed is done where each
-target metric's 95 % half-width over the whole steady window is within --target at 10 effective
-degrees of freedom or more, and its row holds the estimator's means, standard errors, half-widths
+target metric has 10 effective degrees of freedom or more over the whole steady window and its
+standard error times t(0.975, 10) (its 95 % half-width at 10 dof) is within --target, and its row holds the estimator's means, standard errors, half-widths
 (<key>_hw95_<unit>) and degrees of freedom (<key>_dof) for every metric. Then, for the speed: the time series and averages
 (`drum_metrics series`), a ParaView picture, the end state (compressed restart), the settings and
 the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the study's report
@@ -207,10 +207,19 @@ def obm_columns(row, snapshots, steady_from, snapshot, metrics):
     return row
 
 
+def at_min_dof(iv):
+    """The 95 % half-width the interval would have at MIN_DOF degrees of freedom: its standard error
+    times t(0.975, MIN_DOF). Held to a target, it bounds the standard error, so the power a target
+    was chosen for (estimator.half_width_for_power, at MIN_DOF) holds at any dof above it; the
+    half-width itself would allow a larger error at more dof (80 % at 10, 74 % at many)."""
+    return iv.se * float(estimator.stats.t.ppf(0.5 + CONFIDENCE / 2.0, estimator.MIN_DOF))
+
+
 def obm_verdict(intervals, targets, simulated, cap):
-    """--rule obm, after a segment: 'done' where every target metric's 95 % half-width is within
-    its target at MIN_DOF effective degrees of freedom or more, else 'capped' or 'continue'."""
-    if intervals and all(iv.half_width <= targets[k] and iv.dof >= estimator.MIN_DOF for k, iv in intervals.items()):
+    """--rule obm, after a segment: 'done' where every target metric has MIN_DOF effective degrees of
+    freedom or more and its half-width at MIN_DOF (at_min_dof) within its target, else 'capped' or
+    'continue'."""
+    if intervals and all(at_min_dof(iv) <= targets[k] and iv.dof >= estimator.MIN_DOF for k, iv in intervals.items()):
         return "done"
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
@@ -218,7 +227,7 @@ def obm_verdict(intervals, targets, simulated, cap):
 def obm_still_needed(intervals, targets, averaged):
     """Simulated seconds still needed, about, for the half-widths to reach their targets (they fall
     as the square root of the time averaged); nan before the series has settled."""
-    ratios = [(iv.half_width / targets[k]) ** 2 for k, iv in intervals.items()]
+    ratios = [(at_min_dof(iv) / targets[k]) ** 2 for k, iv in intervals.items()]
     if not intervals or not averaged > 0 or not all(math.isfinite(r) for r in ratios):
         return float("nan")
     worst = max(ratios)
@@ -613,9 +622,10 @@ def arguments(argv=None):
                         "ones going (default: %(default)s)")
     p.add_argument("--rule", choices=("revolutions", "obm"), default="revolutions",
                    help="revolutions: batch means of whole revolutions (--min-batches, --confidence) must meet the "
-                        "targets as standard errors; obm: the 95 %% half-widths of tools/drum/estimator.py "
-                        "(overlapping batch means, batch length from the series) over the steady window must meet "
-                        "the targets with 10 effective degrees of freedom at least (default: %(default)s)")
+                        "targets as standard errors; obm: tools/drum/estimator.py's intervals (overlapping batch "
+                        "means, batch length from the series) over the steady window, at 10 effective degrees of "
+                        "freedom at least, their standard errors times t(0.975, 10) within the targets "
+                        "(default: %(default)s)")
     p.add_argument("--fresh-start", action="store_true",
                    help="the first segment from --start-state drops its contact histories (drum.in -var history "
                         "fresh): for contact models other than the state's, e.g. tangential pournin from a history state")
