@@ -114,6 +114,12 @@ class Power(unittest.TestCase):
         self.assertAlmostEqual(estimator.power(2.8016, 1.0, 1e7), 0.80, delta=1e-3)
         self.assertAlmostEqual(estimator.power(0.0, 1.0, 1e7), 0.05, delta=1e-3)  # no difference: the false alarms
 
+    def test_the_half_width_gives_the_power_asked(self):
+        for wanted in (0.2, 0.5, 0.8, 0.95):
+            h = estimator.half_width_for_power(1.0, wanted)
+            se = math.sqrt(2.0) * h / float(estimator.stats.t.ppf(0.975, 10))
+            self.assertAlmostEqual(estimator.power(1.0, se, 20), wanted, places=6)
+
     def test_the_detection_rate_of_simulated_differences(self):
         # differences of two runs with 10 dof each (chi-square standard errors), true difference
         # delta: the rate at which their Welch interval excludes 0 matches power() (binomial 4 sd)

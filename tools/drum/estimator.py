@@ -173,7 +173,7 @@ def half_width_for_power(delta, power_wanted=0.8, dof=MIN_DOF, confidence=0.95):
     """The 95 % half-width each of two independent runs must reach (at `dof` degrees of freedom
     each) for their difference to be found with probability `power_wanted` where it is `delta`:
     Hc 0.1 mm at 80 % asks 0.054 mm of each side."""
-    lo, hi = 1e-12 * abs(delta), abs(delta)
+    lo, hi = 1e-12 * abs(delta), 100.0 * abs(delta)  # (at low power wanted, wider than delta)
     t = float(stats.t.ppf(0.5 + confidence / 2.0, dof))
     for _ in range(100):  # bisection: power falls as the half-width grows
         h = 0.5 * (lo + hi)
