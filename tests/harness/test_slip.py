@@ -519,5 +519,19 @@ class Slip(unittest.TestCase):
                                         "--out", str(Path(d) / "x")]), 1)
 
 
+
+class PlainAnswer(unittest.TestCase):
+    def test_each_set_against_the_thesis_drop(self):
+        a, b, c = ((("conventions", "a"),), (("conventions", "b"),), (("conventions", "c"),))  # settings as slip keys them
+        lines = slip.plain_answer([a, a, b, b, c], [31.5, 31.6, 26.7, 28.0, 25.0], {a: "set A", b: "set B", c: "set C"})
+        text = lines[0]
+        self.assertTrue(text.startswith("In plain words: the thesis saw its drop between 27 and 28 rpm"))
+        self.assertIn("with set A, the bed lets go of the drum between 31.5 and 31.6 rpm (2 histories), so it is "
+                      "still carried at 28 rpm", text)
+        self.assertIn("with set B, the bed lets go of the drum between 26.7 and 28.0 rpm (2 histories), where the "
+                      "thesis saw its drop", text)
+        self.assertIn("with set C, the bed lets go of the drum at 25.0 rpm (1 histories), before", text)
+        self.assertEqual(slip.plain_answer([a, b], [31.5, None]), [])
+
 if __name__ == "__main__":
     unittest.main()
