@@ -61,6 +61,9 @@ class Ladder(unittest.TestCase):
         checkpoint(docs / "dt_tc81" / "21rpm", 1.23e-6, 30.0, 1, {})
         checkpoint(docs / "dt_tc20" / "21rpm", 5e-6, 30.0, 2, {"Hc_m": 2e-4})
         out = Path(cls.tmp.name) / "out"
+        out.mkdir()
+        # --cost's interleaved measurement of tc/20 (not of tc/81): it replaces that run's own rate
+        harness.write_csv(out / "drum_timestep_cost.csv", [{"law": "plain", "tc_over_dt": 20, "wall_s_per_simulated_s": 1600.0}])
         drum_timestep.main(["--docs", str(docs), "--out", str(out)])
         cls.rows = harness.read_csv(out / "drum_timestep.csv")
         cls.out = out
@@ -91,6 +94,11 @@ class Ladder(unittest.TestCase):
         r = self.row(81.3, "Hc_m")
         self.assertEqual(r["difference"], "")
         self.assertAlmostEqual(r["wall_s_per_simulated_s"], 600.0 / (round(30.0 / 1.23e-6) // 2 * 1.23e-6), places=3)
+
+    def test_a_measured_cost_replaces_the_runs_own(self):
+        self.assertEqual((self.row(20, "Hc_m")["wall_s_per_simulated_s"], self.row(20, "Hc_m")["cost_from"]),
+                         (1600.0, "interleaved"))
+        self.assertEqual(self.row(81.3, "Hc_m")["cost_from"], "segments")
 
     def test_the_chart_is_drawn(self):
         self.assertTrue((self.out / "drum_timestep_21rpm.png").stat().st_size > 10000)
