@@ -99,13 +99,12 @@ def read_run(docs, rpm, study):
     what is committed, or None where nothing is."""
     folder = docs / study / f"{rpm}rpm"
     if (folder / "series_metrics.csv").exists():
-        dt = float(harness.read_json(folder / "run.json")["settings"]["variables"]["dt"])
-        table = {round(r["rpm"]): r for r in harness.read_csv(docs / f"{study}.csv")}
-        row = table[rpm]
+        record = harness.read_json(folder / "run.json")
+        dt = float(record["settings"]["variables"]["dt"])
+        row = next(r for r in harness.read_csv(docs / f"{study}.csv") if round(r["rpm"]) == rpm)
         series = harness.read_csv(folder / "series_metrics.csv")
         start = series[0]["time_s"] + row["settle_s"]
-        record = harness.read_json(folder / "run.json")
-        state = "done" if record["outcome"] == "done" else record["outcome"]
+        state = record["outcome"]
         loops = record.get("loops", [])
         if not loops:  # older records: the whole run's CPU over its 2 ranks
             loops = [{"loop_s": record["cpu_s"] / 2.0, "steps": round(record["simulated_s"] / dt)}]
@@ -123,10 +122,10 @@ def read_run(docs, rpm, study):
         loops = progress.get("loops", [])
     else:
         return None
-    window = [r for r in series if r["time_s"] >= start - 0.5 * SNAPSHOT]
+    window = sum(r["time_s"] >= start - 0.5 * SNAPSHOT for r in series)
     columns = [c for c in series[0] if c not in ("step", "time_s", "beads", "wall_contacts")]
-    intervals = {c: estimator.mean_interval([r[c] for r in window], SNAPSHOT) for c in columns} if window else {}
-    return {"dt": dt, "state": state, "window_s": len(window) * SNAPSHOT, "cost": cost(loops, dt), "intervals": intervals}
+    intervals = estimator.window_intervals(series, start, SNAPSHOT, {c: c for c in columns}) if window else {}
+    return {"dt": dt, "state": state, "window_s": window * SNAPSHOT, "cost": cost(loops, dt), "intervals": intervals}
 
 
 def unit_of(column):

@@ -363,11 +363,8 @@ TEST_F(DrumCylinder, OneConventionAtATimeReachesTheModel)
                                    " -var time 0.0001 -var dumpdt 0.0001 -var name " + name,
                                dir, name + ".out");
         EXPECT_EQ(r.status, 0) << r.output;
-        const std::smatch m = [&] {
-            std::smatch found;
-            std::regex_search(r.output, found, std::regex(R"(\(1,2\):[^\n]*restitution ([0-9.]+) continuous)"));
-            return found;
-        }();
+        std::smatch m;
+        std::regex_search(r.output, m, std::regex(R"(\(1,2\):[^\n]*restitution ([0-9.]+) continuous)"));
         return m.empty() ? -1.0 : std::stod(m[1]);
     };
     EXPECT_NEAR(restitution("", "conv_plain"), 0.46, 1e-4);

@@ -298,10 +298,10 @@ class ObmRule(unittest.TestCase):
         for k in range(600):
             x = 0.8 * x + rng.normal(0.0, 1e-4)
             rows.append({"time_s": 0.05 * k, "Hc_m": (-0.05 if k < 100 else -0.097) + x})
-        iv = steady.window_intervals(rows, 5.0, 0.05, {"Hc": "Hc_m"})["Hc"]
+        iv = steady.estimator.window_intervals(rows, 5.0, 0.05, {"Hc": "Hc_m"})["Hc"]
         self.assertLess(abs(iv.mean + 0.097), 3 * iv.se)
         self.assertGreaterEqual(iv.dof, 10)
-        whole = steady.window_intervals(rows, 0.0, 0.05, {"Hc": "Hc_m"})["Hc"]
+        whole = steady.estimator.window_intervals(rows, 0.0, 0.05, {"Hc": "Hc_m"})["Hc"]
         self.assertGreater(abs(whole.mean - iv.mean), 0.005)  # the start, a sixth of the series, would shift it
 
     def test_a_finished_rows_columns(self):

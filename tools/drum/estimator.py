@@ -147,6 +147,13 @@ def mean_interval(values, dt, confidence=0.95, min_dof=MIN_DOF):
     return Interval(mean, float(stats.t.ppf(0.5 + confidence / 2.0, dof)) * se, dof, b * dt, se)
 
 
+def window_intervals(snapshots, start, spacing, columns, confidence=0.95):
+    """{key: Interval} of each column {key: column} of `snapshots` (rows with a time_s, `spacing`
+    seconds apart) from time `start` on: a steady window's error bars, metric by metric."""
+    window = [r for r in snapshots if r["time_s"] >= start - 0.5 * spacing]
+    return {key: mean_interval([r[c] for r in window], spacing, confidence) for key, c in columns.items()}
+
+
 def compare(a, b, confidence=0.95):
     """(difference a - b, half-width of its interval, Welch-Satterthwaite dof) for two independent
     Intervals: they agree at this confidence where |difference| <= half-width, which two series

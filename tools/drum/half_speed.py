@@ -24,7 +24,6 @@ Needs: python3-numpy, python3-scipy.
 """
 
 import argparse
-import csv
 import math
 import sys
 from pathlib import Path
@@ -52,12 +51,6 @@ def se_of(row, key, unit):
 def lagrange(xs, x):
     """The weights of the quadratic through the points at xs, evaluated at x."""
     return [math.prod((x - xj) / (xi - xj) for j, xj in enumerate(xs) if j != i) for i, xi in enumerate(xs)]
-
-
-def read(rows):
-    """{rpm: row} of a study table's rows with their numbers as floats."""
-    return {float(r["rpm"]): {k: (float(v) if k not in ("conventions", "wall", "done") else v) for k, v in r.items()}
-            for r in rows}
 
 
 def compare(table):
@@ -158,8 +151,7 @@ def main(argv=None):
     p.add_argument("--out", help="OUT.csv and OUT.md (default: docs/drum/half_speed, or half_speed_NAME)")
     a = p.parse_args(argv)
     docs = Path(a.docs)
-    with open(docs / f"{a.name}.csv", newline="") as f:
-        table = read(list(csv.DictReader(f)))
+    table = {r["rpm"]: r for r in harness.read_csv(docs / f"{a.name}.csv")}
     out = Path(a.out) if a.out else docs / ("half_speed" if a.name == "study_thesis" else f"half_speed_{a.name}")
     rows = compare(table)
     harness.write_csv(out.with_suffix(".csv"), [r for r in rows if r["metric"]],

@@ -40,7 +40,8 @@ import harness  # noqa: E402
 import slip  # noqa: E402
 
 DOCS = harness.REPO / "docs" / "drum"
-R, G = 0.225, 9.81
+MATERIALS = harness.materials()
+R, G, FILL = MATERIALS["drum_R"], MATERIALS["gravity"], MATERIALS["thesis_fill"]  # inputs/materials.in
 # (study, bead-drum mu, conventions, wall, history, seconds per rpm)
 RAMPS = [
     ("slip_thesis", 0.95, "thesis", "cylinder", "from study_thesis 21 rpm", 1.5),
@@ -79,7 +80,7 @@ def segment(fill):
     return eps, 4.0 * math.sin(eps) ** 3 / (3.0 * (2 * eps - math.sin(2 * eps)))
 
 
-def friction_needed(angle_deg, rpm, fill=0.40, spread=None):
+def friction_needed(angle_deg, rpm, fill=FILL, spread=None):
     """Friction over normal force at the wall of a rigid carried bed: its weight's torque about the
     axis, M g s sin(theta), held by friction at radius R, over the wall's normal forces, whose sum
     is `spread` (default eps / sin(eps): a pressure uniform along the wetted arc; 1: all radial)
@@ -92,11 +93,12 @@ def friction_needed(angle_deg, rpm, fill=0.40, spread=None):
     return s * math.sin(theta) / (spread * (math.cos(theta) + froude(rpm) * s))
 
 
-def friction_bound(angle_deg, rpm, fill=0.40, points=180):
+def friction_bound(angle_deg, rpm, fill=FILL, points=180):
     """The least wall friction mu for which some spread of pressure p >= 0 and friction |f| <= mu p
     along the wetted arc holds a rigid bed (the fill's segment, chord at angle_deg, turning with the
     drum at rpm) in equilibrium, forces and torque (a linear programme per mu, bisected): below it
     no wall can hold the bed; above it one can, if the wall's forces spread right. Units M g = R = 1."""
+    import numpy as np
     from scipy.optimize import linprog
     eps, s = segment(fill)
     theta = math.radians(angle_deg)
@@ -110,12 +112,11 @@ def friction_bound(angle_deg, rpm, fill=0.40, points=180):
             [0.0] * points + [1.0] * points]
     b_eq = [-load[0], -load[1], -torque]
 
+    eye = np.eye(points)
+
     def holds(mu):
-        a_ub = [[(-mu if j == i else 0.0) for j in range(points)] + [(1.0 if j == i else 0.0) for j in range(points)]
-                for i in range(points)] + \
-               [[(-mu if j == i else 0.0) for j in range(points)] + [(-1.0 if j == i else 0.0) for j in range(points)]
-                for i in range(points)]
-        r = linprog([0.0] * (2 * points), A_ub=a_ub, b_ub=[0.0] * (2 * points), A_eq=a_eq, b_eq=b_eq,
+        a_ub = np.block([[-mu * eye, eye], [-mu * eye, -eye]])  # f - mu p <= 0 and -f - mu p <= 0
+        r = linprog(np.zeros(2 * points), A_ub=a_ub, b_ub=np.zeros(2 * points), A_eq=a_eq, b_eq=b_eq,
                     bounds=[(0, None)] * points + [(None, None)] * points, method="highs")
         return r.status == 0
     lo, hi = 0.0, 2.0
@@ -134,19 +135,8 @@ def carried_angle(docs):
     rows = [r for r in harness.read_csv(path) if r["bed_turn_1"] >= 0.95]
     if len(rows) < 2:
         return None
-    x, y = [r["rpm"] for r in rows], [r["angle_deg"] for r in rows]
-    mx, my = statistics.fmean(x), statistics.fmean(y)
-    slope = sum((a - mx) * (b - my) for a, b in zip(x, y)) / sum((a - mx) ** 2 for a in x)
-    return lambda rpm: my + slope * (rpm - mx)
-
-
-def rigid_release(mu, angle, top=120.0):
-    """The lowest speed [rpm] up to `top` at which the rigid bed needs more friction than mu, or nan."""
-    for k in range(1, int(top * 10) + 1):
-        rpm = k / 10.0
-        if friction_needed(angle(rpm), rpm) > mu:
-            return rpm
-    return math.nan
+    fit = statistics.linear_regression([r["rpm"] for r in rows], [r["angle_deg"] for r in rows])
+    return lambda rpm: fit.intercept + fit.slope * rpm
 
 
 def froude(rpm):

@@ -472,11 +472,12 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
         return []
     level = f"{1.0 - alpha:.0%}"
     lines = ["## Answer: 27 → 28 rpm", ""]
-    if len(set(found_sets)) < len(found_sets):
-        first = {}
-        for (label, _), key in zip(found, found_sets):
-            first.setdefault(key, label)
-        lines += plain_answer(found_sets, onsets, first)
+    grouped = len(set(found_sets)) < len(found_sets)
+    labels = {}  # each set by the label of its first history
+    for (label, _), key in zip(found, found_sets):
+        labels.setdefault(key, label)
+    if grouped:
+        lines += plain_answer(found_sets, onsets, labels)
     verdicts = []
     for label, (diff, _, parts) in found:
         verdict, critical = change(0.0, parts[0], parts[1], diff, parts[2], parts[3], alpha)
@@ -490,11 +491,7 @@ def answer_section(studies, alpha, ramps=None, sets=None, robust=None):
     lines.append("")
     pairs = [(i, j) + contrast(found[i][1], found[j][1], alpha)
              for i in range(len(found)) for j in range(i + 1, len(found))]
-    grouped = len(set(found_sets)) < len(found_sets)
     if grouped and "?" not in verdicts:
-        labels = {}
-        for (label, _), key in zip(found, found_sets):
-            labels.setdefault(key, label)
         lines += sets_headline(verdicts, found_sets, pairs, level, onsets, windows, [got[0] for _, got in found],
                                labels)
     same = []

@@ -12,8 +12,9 @@ Hc 0.3 mm, angle 0.3 deg) with at least --min-batches batches. A speed that reac
 simulated seconds stops there, flagged. With --rule obm the error bars are tools/drum/estimator.py's
 instead (overlapping batch means, batch length from the series): the speed is done where each
 target metric has 10 effective degrees of freedom or more over the whole steady window and its
-standard error times t(0.975, 10) (its 95 % half-width at 10 dof) is within --target, and its row holds the estimator's means, standard errors, half-widths
-(<key>_hw95_<unit>) and degrees of freedom (<key>_dof) for every metric. Then, for the speed: the time series and averages
+standard error times t(0.975, 10) (its 95 % half-width at 10 dof) is within --target, and its
+row holds the estimator's means, standard errors, half-widths (<key>_hw95_<unit>) and degrees of
+freedom (<key>_dof) for every metric. Then, for the speed: the time series and averages
 (`drum_metrics series`), a ParaView picture, the end state (compressed restart), the settings and
 the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the study's report
 (tools/drum/report.py) to docs/drum/NAME.md and .png, and with --commit the driver commits them.
@@ -159,14 +160,16 @@ def still_needed(row, t_end, rpm, min_batches, snapshot):
     return max(min_batches * batch - have, 0) * snapshot
 
 
-def progress_note(still, loops, dt, what="for the minimum of batches"):
+def progress_note(still, loops, dt, rule="revolutions"):
     """What a segment's line says of the time left: the simulated seconds still needed at least and
     their wall time at this speed's rate so far (its segments' LIGGGHTS loop times)."""
+    what, met = (("for the minimum of batches", "enough batches; the error targets decide") if rule == "revolutions"
+                 else ("for the half-widths", "the half-widths meet their targets; the effective degrees of "
+                                              "freedom decide"))
     if not math.isfinite(still):
         return "not settled yet"
     if still <= 0:
-        return ("enough batches; the error targets decide" if what == "for the minimum of batches"
-                else "the half-widths meet their targets; the effective degrees of freedom decide")
+        return met
     steps = sum(lp["steps"] for lp in loops)
     if not steps:
         return f"at least {still:.3g} s simulated more"
@@ -183,13 +186,6 @@ def verdict(row, simulated, cap):
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
 
-def window_intervals(snapshots, steady_from, snapshot, columns):
-    """{key: 95 % Interval (tools/drum/estimator.py)} of each metric column {key: column} over the
-    snapshots (the metrics cache's rows) from the steady start on."""
-    window = [r for r in snapshots if r["time_s"] >= steady_from - 0.5 * snapshot]
-    return {key: estimator.mean_interval([r[c] for r in window], snapshot, CONFIDENCE) for key, c in columns.items()}
-
-
 def obm_columns(row, snapshots, steady_from, snapshot, metrics):
     """--rule obm: a finished speed's row takes, for every metric (`harness.drum_metric_table()`),
     the estimator's mean, standard error, 95 % half-width (<key>_hw95_<unit as its column spells
@@ -197,7 +193,8 @@ def obm_columns(row, snapshots, steady_from, snapshot, metrics):
     capped before it settled has no steady window: its row keeps the batch means."""
     if not math.isfinite(steady_from):
         return row
-    intervals = window_intervals(snapshots, steady_from, snapshot, {m["key"]: m["column"] for m in metrics})
+    intervals = estimator.window_intervals(snapshots, steady_from, snapshot, {m["key"]: m["column"] for m in metrics},
+                                           CONFIDENCE)
     row["batches"] = float("nan")
     for m in metrics:
         iv = intervals[m["key"]]
@@ -228,10 +225,9 @@ def obm_still_needed(intervals, targets, averaged):
     """Simulated seconds still needed, about, for the half-widths to reach their targets (they fall
     as the square root of the time averaged); nan before the series has settled."""
     ratios = [(at_min_dof(iv) / targets[k]) ** 2 for k, iv in intervals.items()]
-    if not intervals or not averaged > 0 or not all(math.isfinite(r) for r in ratios):
+    if not ratios or not averaged > 0 or not all(math.isfinite(r) for r in ratios):
         return float("nan")
-    worst = max(ratios)
-    return max(averaged * (worst - 1.0), 0.0) if math.isfinite(worst) else float("nan")
+    return max(averaged * (max(ratios) - 1.0), 0.0)
 
 
 def pack(src, dst):
@@ -438,8 +434,17 @@ class Study:
         if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
             return {}
         columns = {m["key"]: m["column"] for m in harness.drum_metric_table()}
-        return window_intervals(harness.read_csv(self.cache(rpm)), start, self.dumpdt,
-                                {k: columns[k] for k in self.args.targets})
+        return estimator.window_intervals(harness.read_csv(self.cache(rpm)), start, self.dumpdt,
+                                          {k: columns[k] for k in self.args.targets}, CONFIDENCE)
+
+    def decide(self, rpm, simulated):
+        """(verdict, the drum_metrics steady row, --rule obm's intervals or None) of the speed's series
+        as it is."""
+        row = self.check(rpm)
+        if self.args.rule != "obm":
+            return verdict(row, simulated, self.args.cap), row, None
+        intervals = self.intervals(rpm, row)
+        return obm_verdict(intervals, self.args.targets, simulated, self.args.cap), row, intervals
 
     def run_speed(self, rpm, start, start_sha):
         """Segments until the verdict; returns (verdict, progress record, end-state restart).
@@ -471,10 +476,8 @@ class Study:
         row = None
         if outcome != "continue" and done.get("settings") != self.settings:
             # ... unless the stop rule changed since: decided again from the series as it is
-            row = self.check(rpm)
-            intervals = self.intervals(rpm, row) if a.rule == "obm" else None
-            outcome = done["outcome"] = (verdict(row, done["simulated_s"], a.cap) if intervals is None
-                                         else obm_verdict(intervals, a.targets, done["simulated_s"], a.cap))
+            outcome, row, _ = self.decide(rpm, done["simulated_s"])
+            done["outcome"] = outcome
             harness.say(WHO, f"{rpm} rpm: its verdict decided again under the changed stop rule: {outcome}")
         done["settings"] = self.settings
         while outcome == "continue":
@@ -499,10 +502,8 @@ class Study:
             # The segment's snapshots go into the metrics cache before it counts as recorded: the
             # next segment rewrites the snapshot at its first step (the restart's), whose drum
             # forces differ by the restart's one-step perturbation; the cache keeps this one.
-            row = self.check(rpm)
-            intervals = self.intervals(rpm, row) if a.rule == "obm" else None
-            outcome = done["outcome"] = (verdict(row, done["simulated_s"], a.cap) if intervals is None
-                                         else obm_verdict(intervals, a.targets, done["simulated_s"], a.cap))
+            outcome, row, intervals = self.decide(rpm, done["simulated_s"])
+            done["outcome"] = outcome
             harness.write_json(progress, done)
             if previous:
                 Path(previous).unlink(missing_ok=True)
@@ -518,7 +519,7 @@ class Study:
                                    for k, iv in intervals.items()) or "no interval yet"
                 still = obm_still_needed(intervals, a.targets, done["last_step"] * self.dt - row["steady_from_s"])
             if outcome == "continue":
-                left = f" ({progress_note(still, done['loops'], self.dt, 'for the half-widths' if intervals else 'for the minimum of batches')})"
+                left = f" ({progress_note(still, done['loops'], self.dt, a.rule)})"
             harness.say(WHO, f"{rpm} rpm: {done['simulated_s']:g} s simulated, settled {row['settled']}, "
                              f"{errors}: {outcome}{left}")
         return outcome, done, Path(done["state"])
