@@ -116,11 +116,12 @@ void ContactExactCollision(benchmark::State& state)
         for (Contact& k : c) {
             CollisionState collision = k.collision;
             TangentialState s = fresh(k.state);
-            const CollisionStep step =
-                exactCollisionStep(normal, collision, k.overlap, k.rate, k.vt.squaredNorm() * (1.0 / (2.0 * r)));
             const double arm = r - 0.5 * k.overlap;
             const SpringDrive drive =
                 springDrive(k.vt, k.n, k.overlap, k.meff, 2.0 * k.meff, r, arm, k.spinI, 2.0 * k.meff, r, arm, k.spinJ);
+            const CollisionStep step =
+                exactPairStep(normal, tangential, collision, k.overlap, k.rate, k.vt.squaredNorm() * (1.0 / (2.0 * r)),
+                              [&] { return PairAtTouch{drive, k.vt, k.meff, 0.5, 1.0 / (2.0 * r)}; });
             const Vec3 ft = pourninExactTangentialForce(s, k.n, drive.rate, drive.mass, tangential, step,
                                                         frictionLimit(0.5, k.meff * step.friction), true);
             benchmark::DoNotOptimize(ft);

@@ -233,7 +233,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // common step, which they would otherwise crowd with their transcendental
 // evaluations.
 [[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v,
-                                                          double pull)
+                                                          double pull, double pullRate)
 {
     const double dt = law.dt;
     CollisionStep r;
@@ -277,6 +277,18 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         r.sinceStart = s;
         touch = {shift, vh + pull * s};
         now = law.o.after(touch, s);
+        if (pullRate != 0.0) {
+            // From touch to this sample the pull ran at pull + pullRate t (t
+            // since touch): x_p = -(pull + pullRate t) / k + c pullRate / k^2
+            // solves the forced law, so x - x_p is free; from this sample on
+            // the pull given holds (its change over the coming step is what
+            // the leapfrog's own landing makes up, as inside the contact).
+            const double k = law.o.k, q = pullRate / k;
+            const Motion forced = law.o.after({-law.o.c * q / k, q}, s);
+            now = {now.x + forced.x - q * s + law.o.c * q / k, now.u + forced.u - q};
+            // (the impulse the pull's change took from the contact's start)
+            touch.u -= 0.5 * pullRate * s * s;
+        }
         state.previousOffset = now.x - shift - x;
     } else {
         // under way: the previous sample and this one define the motion
@@ -338,9 +350,12 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // `pull` what else decelerates the overlap (x'' = -F - pull): between two
 // spheres the centrifugal |vt|^2 / d of their relative tangential motion
 // (vt of the centres, d their distance), which ends a fast oblique contact
-// earlier than the law alone; zero on a flat wall.
+// earlier than the law alone; zero on a flat wall. `pullRate`: at a
+// contact's first step, how fast the pull changed between first touch and
+// this sample (the tangential force turns vt from the touch on; the pull is
+// that of the velocities before it: pullRateSinceTouch).
 inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v,
-                                        double pull = 0.0)
+                                        double pull = 0.0, double pullRate = 0.0)
 {
     // The rate LIGGGHTS gives is -(vi - vj).n with the normal of this step,
     // the velocities of the half step before: with a turning normal that is
@@ -372,7 +387,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     }
     // a contact held in a packing: the plain step law (no call out of line)
     if (state.phase == CollisionPhase::held) return detail::heldStep(law, x, v);
-    return detail::exactCollisionEnds(law, state, x, v, pull);
+    return detail::exactCollisionEnds(law, state, x, v, pull, pullRate);
 }
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)

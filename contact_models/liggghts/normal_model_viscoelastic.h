@@ -19,6 +19,7 @@ NORMAL_MODEL(VISCOELASTIC,viscoelastic,20)
 #include "core/law.h"
 #include "error.h"
 #include "messages.h"
+#include "spring_drive.h"
 #include "type_pair_table.h"
 
 namespace LIGGGHTS::ContactModels {
@@ -153,8 +154,13 @@ private:
             for (int d = 0; d < 3; ++d) vr2 += (sidata.v_i[d] - sidata.v_j[d]) * (sidata.v_i[d] - sidata.v_j[d]);
             pull = std::max(vr2 - sidata.vn * sidata.vn, 0.0) * sidata.rinv;
         }
-        const CollisionStep step = exactCollisionStep(table.collision(sidata.itype, sidata.jtype).normal, state,
-                                                      sidata.deltan, -sidata.vn, pull);
+        const TypePairTable::CollisionLaws& laws = table.collision(sidata.itype, sidata.jtype);
+        const CollisionStep step = exactPairStep(laws.normal, laws.tangential, state, sidata.deltan, -sidata.vn, pull, [&] {
+            const Vec3 n(sidata.en[0], sidata.en[1], sidata.en[2]);
+            const Vec3 vr(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
+            return PairAtTouch{contactSpringDrive(sidata, n, Vec3(sidata.vtr1, sidata.vtr2, sidata.vtr3)),
+                               vr - sidata.vn * n, meff, laws.mu, sidata.rinv};
+        });
         if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]

@@ -15,6 +15,7 @@ TANGENTIAL_MODEL(TANGENTIAL_POURNIN,pournin,20)
 #include "update.h"
 #include "core/collision.h"
 #include "core/law.h"
+#include "spring_drive.h"
 #include "type_pair_table.h"
 
 namespace LIGGGHTS::ContactModels {
@@ -40,7 +41,7 @@ public:
 
     void registerSettings(Settings&) {}
     // exactCollision (model viscoelastic registered its state first): the
-    // normal force the step foresaw for the next, the continuous rate's
+    // normal force the step foresaw for the next (and the pull it took), the continuous rate's
     // offset from the samples' where the cap bound within a
     // step (h[6], unused then, flags it: 1, and 2 if it ended the step
     // sliding), and the spring's force a slide ended the step with (where
@@ -56,6 +57,7 @@ public:
         hsetup->add_history_value("pournin_slide_x", "1");  // sliding: the spring's force at the step's end
         hsetup->add_history_value("pournin_slide_y", "1");
         hsetup->add_history_value("pournin_slide_z", "1");
+        hsetup->add_history_value("pournin_forecast_pull", "0");  // the pull the forecast was made with
     }
 
     void connectToProperties(PropertyRegistry& registry)
@@ -90,11 +92,11 @@ public:
         // nominal spring only
         viscoelastic::ExactTangentialState e;
         if (exact) {
-            const viscoelastic::SpringDrive drive = springDrive(sidata, normal, vt);
+            const viscoelastic::SpringDrive drive = contactSpringDrive(sidata, normal, vt);
             const double* const r = &sidata.contact_history[rate_offset];
             // (the offset and the slide's force are read and kept only where
             // they count: off the path, sliding; the common step skips both)
-            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.forecast = r[3];
+            e.offPath = h[6] != 0.0, e.sliding = h[6] == 2.0, e.forecast = r[3], e.forecastPull = r[7];
             if (e.offPath) e.rateOffset = Vec3(r[0], r[1], r[2]);
             if (e.sliding) e.force = Vec3(r[4], r[5], r[6]);
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
@@ -116,7 +118,7 @@ public:
             else {
                 h[6] = e.offPath ? (e.sliding ? 2.0 : 1.0) : 0.0;
                 double* const r = &sidata.contact_history[rate_offset];
-                r[3] = e.forecast;
+                r[3] = e.forecast, r[7] = e.forecastPull;
                 if (e.offPath)
                     for (int d = 0; d < 3; ++d) r[d] = e.rateOffset[d];
                 if (e.sliding)
@@ -144,7 +146,7 @@ public:
         double* const h = &scdata.contact_history[history_offset];
         for (int d = 0; d < 7; ++d) h[d] = 0.0;
         if (rate_offset >= 0)
-            for (int d = 0; d < 7; ++d) scdata.contact_history[rate_offset + d] = 0.0;
+            for (int d = 0; d < 8; ++d) scdata.contact_history[rate_offset + d] = 0.0;
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -155,18 +157,6 @@ private:
     static double unclippedNormalForce(const SurfacesIntersectData& d)
     {
         return viscoelastic::normalForce({d.kn, d.gamman, d.kt, d.gammat}, d.deltan, -d.vn, false);
-    }
-
-    // exactCollision's spring: the rate and mass of core/collision.h's
-    // springDrive, from LIGGGHTS' contact-point velocity vtr.
-    static viscoelastic::SpringDrive springDrive(const SurfacesIntersectData& d, const viscoelastic::Vec3& n,
-                                                 const viscoelastic::Vec3& vtr)
-    {
-        using viscoelastic::Vec3;
-        const Vec3 wi(d.omega_i[0], d.omega_i[1], d.omega_i[2]);
-        if (d.is_wall) return viscoelastic::springDrive(vtr, n, d.deltan, d.meff, d.mi, d.radi, d.cri, wi, 0.0, 0.0, 0.0, wi);
-        return viscoelastic::springDrive(vtr, n, d.deltan, d.meff, d.mi, d.radi, d.cri, wi, d.mj, d.radj, d.crj,
-                                         Vec3(d.omega_j[0], d.omega_j[1], d.omega_j[2]));
     }
 
     // The normal model's table (registered under the contact model both belong to).

@@ -52,6 +52,7 @@ void TypePairTable::loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool 
             CollisionLaws& c = collision_[i * stride_ + j];
             c.normal = stepLaw(osc->normal.k, osc->normal.c, dt, limitForce);
             c.tangential = stepLaw(osc->tangential.k, osc->tangential.c, dt, false);
+            c.mu = p.mu;
             collision_[j * stride_ + i] = c;
             // A binary contact under these laws is stable at any step; a bead
             // with many contacts is not: the same guard as the plain law, on

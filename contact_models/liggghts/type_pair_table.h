@@ -46,6 +46,7 @@ public:
     // `tangential pournin`.
     struct CollisionLaws {
         StepLaw normal, tangential;  // each holds the continuous oscillator it follows
+        double mu = 0;               // coefficientFriction, for a pair's first step (pullRateSinceTouch)
     };
     void loadCollision(LAMMPS_NS::LAMMPS* lmp, bool limitForce, bool wallMassAsParticle, bool exactRestitution,
                        const char* caller, const void* owner);

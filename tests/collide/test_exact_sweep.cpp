@@ -69,7 +69,7 @@ TEST(ExactCollisionSweep, TableBeadDrumPairOnAPlaneSticksAtEveryPhase)
 
 // 24 random cases of 16 random start phases each (384 collisions), each
 // against the same case at tc/1000. Draws: en, et in [0.15, 0.95] (et = en in
-// a third), mu log-uniform in [0.05, 1e6], vt/vn in [0, 3], vn in
+// a third), mu log-uniform in [0.05, 1e6], vt/vn in [0, 5], vn in
 // [0.01, 2] m/s, tc/dt from the coarsest the guard admits (5, or 6 with
 // limitForce) to 40, integer in a third, the geometry and limitForce at random.
 // Tolerances: energy 1e-9 of the incoming (round-off); the contact point on a
@@ -92,7 +92,7 @@ TEST(ExactCollisionSweep, RandomCollisionsKeepTheirInvariantsAndDoNotDependOnThe
         const double et = u(g) < 0.33 ? en : 0.15 + 0.8 * u(g);
         c.params = {1e-4, en, et, 0.05 * std::pow(2e7, u(g))};
         c.normalSpeed = 0.01 * std::pow(200.0, u(g));
-        c.tangentialSpeed = 3.0 * u(g) * c.normalSpeed;
+        c.tangentialSpeed = 5.0 * u(g) * c.normalSpeed;
         const double coarsest = c.limitForce ? 6.0 : 5.0;
         double ratio = coarsest + (40.0 - coarsest) * u(g);
         if (u(g) < 0.33) ratio = std::round(ratio);
@@ -184,9 +184,10 @@ TEST(ExactCollisionSweep, TwoLawsDifferByTheLeverArmAlone)
 // sliding (vt/vn 4), limitForce off and on, at tc/5 (the coarsest the guard
 // admits with limitForce: 5.6 for the beads), tc/7.3 and tc/10. The target:
 // 0.5 % at tc/10 and 1 % coarser, of en and of the tangential velocity
-// change (what friction did). Met by every wall case and every sticking pair;
-// a pair sliding at vt/vn 4 misses it at tc/5 (1.6 % for the bead-drum pair),
-// second order in the normal's turn per step (below).
+// change (what friction did), in every case. (A pair sliding at vt/vn 4 missed
+// it at tc/5, 1.6 % for the bead-drum pair, while its first step took the pull
+// |vt|^2 / d as constant from the touch: core/exact_tangential.h's
+// pullRateSinceTouch.)
 TEST(ExactCollisionSweep, EverySingleCollisionAtSixtyFourPhasesMatchesTheFineStep)
 {
     std::mt19937 g(64);
@@ -219,20 +220,15 @@ TEST(ExactCollisionSweep, EverySingleCollisionAtSixtyFourPhasesMatchesTheFineSte
                 const double dtan = std::fabs((1.0 + o.tangentialRestitution) / (1.0 + ref.tangentialRestitution) - 1.0);
                 worst = std::max({worst, dn, dtan});
             }
-            // a pair sliding fast at incidence: its normal turns by theta = vt dt / d per step, and the
-            // pull (vt^2 / d), which friction changes within the step, is taken per step: second order
-            // in theta (0.027 at tc/5 for vt 4 m/s between 3 mm beads), 19-28 theta^2 measured
-            const double theta = geometry == Geometry::Pair ? slope * c.normalSpeed * c.dt / (2.0 * c.radius1) : 0.0;
             const double target = ratio >= 10.0 ? 0.005 : 0.01;
-            EXPECT_LT(worst, std::max(target, 35.0 * theta * theta)) << tag << " tc/dt " << ratio;
-            std::printf("%s tc/dt %.1f: worst %.2e (normal's turn per step %.3f)\n", tag.c_str(), ratio, worst, theta);
+            EXPECT_LT(worst, target) << tag << " tc/dt " << ratio;
+            std::printf("%s tc/dt %.1f: worst %.2e\n", tag.c_str(), ratio, worst);
             if (worst > target) ++beyondTarget;
             (ratio >= 10.0 ? worst10 : worstCoarse) = std::max(ratio >= 10.0 ? worst10 : worstCoarse, worst);
         }
     }
     std::printf("worst single collision of 64 phases against tc/1000: %.2e at tc/10, %.2e at tc/5-tc/7.3; %d of 48 "
-                "cases beyond the 0.5 %% / 1 %% target (fast sliding pairs)\n", worst10, worstCoarse, beyondTarget);
-    EXPECT_LE(beyondTarget, 4);
+                "cases beyond the 0.5 %% / 1 %% target\n", worst10, worstCoarse, beyondTarget);
 }
 
 // exactRestitution's phase mean of a sticking wall collision (vn 0.2 m/s,

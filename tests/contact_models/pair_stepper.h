@@ -1,0 +1,96 @@
+// Two glass beads (radius 1.5 mm, 2500 kg/m^3) stepped as LIGGGHTS steps a
+// pair under exactCollision: leapfrog, normal j to i, LIGGGHTS' arms
+// R - overlap/2, the pull |vt|^2 / d, the spring driven by springDrive, the
+// first step by exactPairStep. Bead i comes in at (vn, vt, 0) towards bead j
+// at rest, and touches it at (-2R, 0, 0) `phase` of a step before a sample
+// (three steps of free flight before); or, `overlapping`, starts at
+// (-2R + phase dt vn, 0, 0), overlapping by phase dt vn (the regression cases
+// of test_collision were found so).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "core/collision.h"
+#include "core/stability.h"
+
+namespace pairstepper {
+
+using viscoelastic::Vec3;
+
+struct Setup {
+    viscoelastic::ContactParameters p;
+    bool limitForce = false;
+    double ratio = 10;  // tc / dt
+    double vn = 1, vt = 0;
+    Vec3 spinI = Vec3::Zero(), spinJ = Vec3::Zero();
+    double phase = 0.5;
+    bool overlapping = false;
+};
+
+struct Run {
+    Vec3 V, wi, wj;                     // after the contact: the relative velocity and the spins (constant in flight)
+    double energyIn = 0, energyOut = 0;  // kinetic and rotational, both beads
+    double largestFt = 0, peakFn = 0;    // the largest tangential and normal force of a step
+};
+
+constexpr double kRadius = 1.5e-3;
+
+// nullopt: the step exceeds the applied law's stable step (the model refuses
+// it), or limitForce cannot restitute en.
+inline std::optional<Run> steppedPair(const Setup& c)
+{
+    using namespace viscoelastic;
+    const double R = kRadius, m = 2500.0 * 4.0 / 3.0 * kPi * R * R * R, I = 0.4 * m * R * R, meff = 0.5 * m;
+    const auto o = exactCollisionOscillators(c.p, c.limitForce);
+    if (!o) return std::nullopt;
+    const double dt = c.p.tc / c.ratio;
+    const StepLaw normal = stepLaw(o->normal.k, o->normal.c, dt, c.limitForce);
+    const StepLaw tangential = stepLaw(o->tangential.k, o->tangential.c, dt, false);
+    if (dt > stableTimestep(appliedCoefficients(normal, tangential))) return std::nullopt;
+    Vec3 vi(c.vn, c.vt, 0.0), vj = Vec3::Zero(), wi = c.spinI, wj = c.spinJ;
+    Vec3 xi = c.overlapping ? Vec3(-2.0 * R + c.phase * dt * c.vn, 0.0, 0.0)
+                            : Vec3(Vec3(-2.0 * R, 0.0, 0.0) - (3.0 + c.phase) * dt * vi),
+         xj = Vec3::Zero();
+    const auto energy = [&] {
+        return 0.5 * m * (vi.squaredNorm() + vj.squaredNorm()) + 0.5 * I * (wi.squaredNorm() + wj.squaredNorm());
+    };
+    Run r;
+    r.energyIn = energy();
+    CollisionState state;
+    TangentialState spring;
+    ExactTangentialState exact;
+    bool touched = false;
+    for (int step = 0; step < 1000000; ++step) {
+        const Vec3 d = xi - xj;
+        const Vec3 n = d.normalized();
+        const double overlap = 2.0 * R - d.norm();
+        if (overlap > 0.0) {
+            touched = true;
+            const Vec3 v = vi - vj, vt = v - v.dot(n) * n;
+            const double cr = R - 0.5 * overlap;
+            const Vec3 vtr = vt - (cr * (wi + wj)).cross(n);
+            const double pull = std::max(v.squaredNorm() - v.dot(n) * v.dot(n), 0.0) / d.norm();
+            const SpringDrive drive = springDrive(vtr, n, overlap, meff, m, R, cr, wi, m, R, cr, wj);
+            CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, [&] {
+                return PairAtTouch{drive, vt, meff, c.p.mu, 1.0 / d.norm()};
+            });
+            s.friction *= meff, s.meff = meff;
+            const Vec3 ft = exactTangentialForce(spring, exact, n, drive.rate, drive.mass, tangential, normal, s,
+                                                 c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true);
+            const Vec3 f = meff * s.force * n + ft;
+            r.largestFt = std::max(r.largestFt, ft.norm()), r.peakFn = std::max(r.peakFn, std::fabs(meff * s.force));
+            vi += dt * f / m, vj -= dt * f / m;
+            wi -= dt * cr * n.cross(ft) / I, wj -= dt * cr * n.cross(ft) / I;
+        } else if (touched) {
+            break;  // apart: nothing acts any more
+        }
+        xi += dt * vi, xj += dt * vj;
+    }
+    r.V = vi - vj, r.wi = wi, r.wj = wj;
+    r.energyOut = energy();
+    return r;
+}
+
+}  // namespace pairstepper
