@@ -44,9 +44,9 @@ def onsets(names):
 
 
 def speeds_table(study):
-    cols = [("head Hh [mm]", "Hh_m", 1e3, "{:.1f}"), ("centre of mass Hc [mm]", "Hc_m", 1e3, "{:.2f}"),
-            ("angle of repose [°]", "angle_deg", 1.0, "{:.2f}"), ("bed turn (1: carried by the drum)", "bed_turn_1", 1.0,
-                                                                   "{:.2f}")]
+    cols = [("head Hh: highest bead centre [mm]", "Hh_m", 1e3, "{:.1f}"), ("centre of mass Hc [mm]", "Hc_m", 1e3,
+                                                                             "{:.2f}"),
+            ("angle of repose [°]", "angle_deg", 1.0, "{:.2f}"), ("bed turn", "bed_turn_1", 1.0, "{:.2f}")]
     lines = ["| rpm | " + " | ".join(r["rpm"] for r in study) + " |", "|---" * (len(study) + 1) + "|"]
     for label, key, scale, fmt in cols:
         cells = [fmt.format(scale * float(r[key])).replace("-", "−") for r in study]
@@ -73,22 +73,25 @@ def block():
     cost = float(nominal40["cpu_s_per_simulated_s"]) / float(exact5["cpu_s_per_simulated_s"])
     return "\n".join([
         BEGIN,
-        para(f"**One collision, accurate and cheap.** At dt = tc/5 with `exactRestitution on` a binary collision restitutes "
-        f"the requested en (error {100 * abs(float(exact5['restitution_err'])):.0e} %, averaged over the phase at which "
-        f"contacts start within a step) and lasts tc. The nominal law needs tc/40 to come within 0.5 % of en "
-        f"({100 * float(nominal40['restitution_err']):+.2f} %), which costs {cost:.1f} times the CPU time on the same "
-        f"{16336:,}-bead drum, and still misses by {100 * float(nominal81['restitution_err']):+.2f} % at the thesis' "
+        para(f"**One collision, accurate and cheap.** With a timestep of a fifth of the contact duration (dt = tc/5) "
+        f"and `exactRestitution on`, two colliding beads part with the requested restitution coefficient en (error "
+        f"{100 * abs(float(exact5['restitution_err'])):.0e} %, on average over where within a timestep the contact "
+        f"begins) after a contact lasting tc. The plain law needs tc/40 to come within 0.5 % of en "
+        f"({100 * float(nominal40['restitution_err']):+.2f} %), at {cost:.1f} times the CPU time on a 6 mm slice of the "
+        f"drum ({16336:,} beads), and still misses by {100 * float(nominal81['restitution_err']):+.2f} % at the thesis' "
         f"tc/81 ([benchmarks](docs/benchmarks.md#accuracy-against-cost))."),
         "",
-        para(f"**The drum's nine speeds** with the thesis table (averages over {min(revolutions):.1f}–{max(revolutions):.1f} "
-        f"revolutions in steady flow; standard errors of Hc {min(se):.2f}–{max(se):.2f} mm):"),
+        para(f"**The drum's nine speeds** with the thesis' materials (Table 3.1), averaged over "
+        f"{min(revolutions):.1f}–{max(revolutions):.1f} revolutions in steady flow (standard errors of Hc "
+        f"{min(se):.2f}–{max(se):.2f} mm). Heights are above the drum's axis (negative: below it); the bed turn is "
+        "the bed's rotation over the drum's (1: the drum carries the bed; about 0.5: the bed rides on rolling beads):"),
         "",
         speeds_table(study),
         "",
-        para(f"**Where the bed lets go (the slip test).** Raising the speed one rpm every 1.5 s from a carried 21 rpm bed, "
-        f"the bed lets go of the drum at {speeds(thesis)} rpm (two histories) with the thesis table (bead–drum mu "
-        f"0.95), and at {speeds(yade)} rpm with YADE 1.12's conventions (bead–drum mu 0.5, facet meff m/2, no "
-        "attraction)."),
+        para(f"**Where the bed lets go of the drum.** Raising the speed by one rpm every 1.5 s from a carried 21 rpm "
+        f"bed, the bed lets go at {speeds(thesis)} rpm in two independent runs with the thesis' materials (bead–drum "
+        f"friction 0.95), and at {speeds(yade)} rpm with YADE 1.12's settings (bead–drum friction 0.5, wall contacts "
+        "with half the bead's mass, no attractive force at the end of a contact). The thesis saw its drop at 28 rpm."),
         END])
 
 
