@@ -205,6 +205,38 @@ TEST(ExactCollisionSweep, FastSpinningPairKeepsFollowingItsForecastWhenThePullFa
     EXPECT_LT(worst, 0.01);
 }
 
+// A grazing pair whose normal force near the end of the contact missed its
+// forecast (the pull changed within the step): the last step had slid on the
+// cap of the forecast force, 18 per unit mass, and the step put the spring
+// onto the cap of the force it found, 799, where it stuck: 14 % of the
+// incoming speed off the fine step (en 0.5062, et 0.8901, mu 4278, vn
+// 1.995 m/s, vt/vn 5, limitForce on, tc/10.3756, start phases 0.995 to
+// 0.999, where the force ends just after a sample). Within the 0.5 % target
+// now, 0.10-0.14 %. (At 0.99 this grazing pair is 0.51 % off, before as now:
+// its normal turns by 0.032 rad a step, docs/law.md (iv).)
+TEST(ExactCollisionSweep, ASlideDoesNotClimbACapThatMovedWithAMissedForecast)
+{
+    pairstepper::Setup c;
+    c.p = {1e-4, 0.5062, 0.8901, 4278.0};
+    c.vn = 1.995, c.vt = 5.0 * 1.995;
+    c.limitForce = true;
+    double worst = 0.0;
+    for (double phase : {0.995, 0.995625, 0.996, 0.997, 0.999}) {
+        c.phase = phase;
+        c.ratio = 10.3756;
+        const auto coarse = pairstepper::steppedPair(c);
+        c.ratio = 1000.0;
+        const auto fine = pairstepper::steppedPair(c);
+        ASSERT_TRUE(coarse && fine);
+        const double R = pairstepper::kRadius;
+        worst = std::max({worst, (coarse->V - fine->V).norm(), R * (coarse->wi - fine->wi).norm(),
+                          R * (coarse->wj - fine->wj).norm()});
+    }
+    worst /= std::hypot(c.vn, c.vt);
+    std::printf("worst of 5 phases against tc/1000: %.2e of the incoming speed\n", worst);
+    EXPECT_LT(worst, 0.005);
+}
+
 // The failure as first seen, at Table 3.1's bead-drum pair (en = et = 0.46),
 // vt/vn 0.2, tc/10: 64 start phases, mu 0.5 to 10 (the worst phase left at
 // -0.11, then +1.1, +3.7 and +7.9 times vt for mu 0.5, 2, 5, 10).
