@@ -93,4 +93,23 @@ inline std::optional<Run> steppedPair(const Setup& c)
     return r;
 }
 
+// How far one outcome of c leaves from another: the largest change of the
+// relative velocity or of a spin's contact speed R w, over the incoming speed.
+inline double apart(const Run& a, const Run& b, const Setup& c)
+{
+    const double off = std::max({(a.V - b.V).norm(), kRadius * (a.wi - b.wi).norm(), kRadius * (a.wj - b.wj).norm()});
+    return off / std::hypot(c.vn, c.vt);
+}
+
+// The collision at c.ratio against the same at tc/1000 (same touch).
+// nullopt: a step the model refuses.
+inline std::optional<double> offTheFineStep(Setup c)
+{
+    const auto coarse = steppedPair(c);
+    c.ratio = 1000.0;
+    const auto fine = steppedPair(c);
+    if (!coarse || !fine) return std::nullopt;
+    return apart(*coarse, *fine, c);
+}
+
 }  // namespace pairstepper
