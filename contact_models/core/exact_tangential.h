@@ -91,39 +91,38 @@ inline SpringDrive springDrive(const Vec3& vtr, const Vec3& n, double overlap, d
     return {s * vtr - combine(ri - s * cri, wi, rj - s * crj, wj).cross(n), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s)};
 }
 
-// Between two spheres the pull |vt|^2 / d (vt: the centres' relative
-// tangential velocity) is taken from the velocities before a contact's
-// first step, but the tangential force has turned vt since the first touch,
-// up to a step earlier: sliding fast (the bead-drum pair at vt/vn 4, tc/5)
-// the pull falls by 28 % within that step, and taken as constant it left
-// the collision's spin up to 1.6 % off. `first`: the first step as
-// exactCollisionStep gave it with the pull constant; `w`, `mt`: the spring's
-// drive (springDrive); vt with `meff` the pair's; kappa = mu meff / mt.
-// Returns the pull's mean rate of change from the touch to the sample, from
-// the tangential flow over that span (sticking or sliding, the cap followed):
-// exactCollisionStep's pullRate. Zero where there is no span or no pull.
-inline double pullRateSinceTouch(const StepLaw& tangential, const StepLaw& normalLaw, const CollisionStep& first,
-                                 const Vec3& w, double mt, const Vec3& vt, double meff, double kappa, double rinv)
-{
-    const double s = first.sinceStart;
-    if (!(s > 0.0) || !(first.pull > 0.0)) return 0.0;
-    const CapSource src{&normalLaw.o, first.now, first.pull, kappa};
-    const CappedFlow before = cappedFlow(tangential.o, {Vec3::Zero(), w}, src, -s, 0.0);
-    // the force that changed the spring's rate by u - w changed vt by mt / meff as much
-    const Vec3 turned = vt + (mt / meff) * (before.end.u - w);
-    return (turned.squaredNorm() * rinv - first.pull) / s;
-}
-
-// A contact's normal step between two spheres: exactCollisionStep, its first
-// step taken again with the pull's change since the touch. `pair()` gives
-// what that needs, only then: the spring's drive, vt (the centres' relative
-// tangential velocity), meff, mu and 1 / d, as a PairAtTouch.
+// A contact's normal step between two spheres needs, at its first step only,
+// the spring's drive, vt (the centres' relative tangential velocity), meff,
+// mu and 1 / d.
 struct PairAtTouch {
     SpringDrive drive;
     Vec3 vt;
     double meff, mu, rinv;
 };
 
+// Between two spheres the pull |vt|^2 / d is taken from the velocities before
+// a contact's first step, but the tangential force has turned vt since the
+// first touch, up to a step earlier: sliding fast (the bead-drum pair at
+// vt/vn 4, tc/5) the pull falls by 28 % within that step, and taken as
+// constant it left the collision's spin up to 1.6 % off. `first`: a first
+// step (sinceStart > 0) with a pull, as exactCollisionStep gave it with the
+// pull constant. Returns the pull's mean rate of change from the touch to the
+// sample, from the tangential flow over that span (sticking or sliding, the
+// cap followed): exactCollisionStep's pullRate.
+inline double pullRateSinceTouch(const StepLaw& tangential, const StepLaw& normalLaw, const CollisionStep& first,
+                                 const PairAtTouch& p)
+{
+    const double mt = p.drive.mass;
+    const CapSource src{&normalLaw.o, first.now, first.pull, p.mu * p.meff / mt};
+    const CappedFlow before = cappedFlow(tangential.o, {Vec3::Zero(), p.drive.rate}, src, -first.sinceStart, 0.0);
+    // the force that changed the spring's rate by u - w changed vt by mt / meff as much
+    const Vec3 turned = p.vt + (mt / p.meff) * (before.end.u - p.drive.rate);
+    return (turned.squaredNorm() * p.rinv - first.pull) / first.sinceStart;
+}
+
+// A contact's normal step between two spheres: exactCollisionStep, its first
+// step taken again with the pull's change since the touch. `pair()` gives the
+// PairAtTouch, called only then.
 template <class Pair>
 inline CollisionStep exactPairStep(const StepLaw& normal, const StepLaw& tangential, CollisionState& state, double x,
                                    double v, double pull, Pair pair)
@@ -131,9 +130,7 @@ inline CollisionStep exactPairStep(const StepLaw& normal, const StepLaw& tangent
     const CollisionState before = state;
     const CollisionStep first = exactCollisionStep(normal, state, x, v, pull);
     if (!(first.sinceStart > 0.0 && pull > 0.0)) return first;
-    const PairAtTouch p = pair();
-    const double rate = pullRateSinceTouch(tangential, normal, first, p.drive.rate, p.drive.mass, p.vt, p.meff,
-                                           p.mu * p.meff / p.drive.mass, p.rinv);
+    const double rate = pullRateSinceTouch(tangential, normal, first, pair());
     state = before;
     return exactCollisionStep(normal, state, x, v, pull, rate);
 }
@@ -181,6 +178,14 @@ struct ExactTangentialState {
     double forecastPull = 0;  // the pull it was given with
 };
 
+// Whether the normal force at this sample is within `allowance` (and 1e-3
+// of its scale) of what the last step foresaw; from the touch it is the
+// same motion.
+inline bool nearItsForecast(const CollisionStep& normal, const ExactTangentialState& e, double allowance)
+{
+    return normal.sinceStart >= 0.0 || std::fabs(normal.forceNow - e.forecast) <= 1e-3 * normal.forceScale + allowance;
+}
+
 // Whether the contact's normal force follows the motion its last step
 // foresaw: a binary contact does (to round-off); in a packing other contacts move it every step, and the
 // continuous motion each step samples afresh is no binary collision's. Such
@@ -197,8 +202,7 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
     // by 90 % in a step, the force moved by 7 % of that change, and a bound
     // on this step's pull alone sent the contact to the per-step bound, 2.7 %
     // off at tc/5)
-    return normal.sinceStart >= 0.0 || std::fabs(normal.forceNow - e.forecast) <=
-                                           1e-3 * normal.forceScale + 0.5 * std::max(normal.pull, e.forecastPull);
+    return nearItsForecast(normal, e, 0.5 * std::max(normal.pull, e.forecastPull));
 }
 
 [[gnu::noinline]] inline Vec3 cappedTangentialStep(ExactTangentialState& e, Vec3& xi, const Vec3& w, const StepLaw& law,
@@ -216,14 +220,12 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
         at = {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
     }
     // A slide goes on from the last step on the cap only where the normal
-    // force is where that step foresaw it (to 1e-3 of its scale; from the
-    // touch it is the same motion). Where it is not (a pair's pull changed
-    // within the step: allowed by followsItsForecast), the cap moved by that
-    // miss, and the spring keeps its own force: put onto a cap 44 times its
-    // force near a contact's end, a grazing pair (mu 4278, vt/vn 5, 2 m/s,
-    // tc/10.4) stuck there and left 14 % off.
-    const bool onCap = e.sliding && (normal.sinceStart >= 0.0 ||
-                                     std::fabs(normal.forceNow - e.forecast) <= 1e-3 * normal.forceScale);
+    // force is where that step foresaw it, with no allowance for a pull's
+    // change. Where it is not (allowed by followsItsForecast), the cap moved
+    // by that miss, and the spring keeps its own force: put onto a cap 44
+    // times its force near a contact's end, a grazing pair (mu 4278, vt/vn 5,
+    // 2 m/s, tc/10.4) stuck there and left 14 % off.
+    const bool onCap = e.sliding && nearItsForecast(normal, e, 0.0);
     if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
         const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter, nullptr, onCap, e.force);
         e = {};
