@@ -10,6 +10,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   multicontact  the dense column with exactRestitution, ~10 min
   collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
   friction_sweep  exactCollision's friction on 20,000 random wall collisions against the law, ~6 min
+  pair_sweep    exactCollision between two spheres: 4 x 20,000 random draws against tc/1000, ~2 min
   exact_modes   one wall collision with friction per mode against dt/tc, mu 0.5, 5, 1e6, ~3 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
   stability_exact  the dense column under exactRestitution's and exactCollision's coefficients, ~1 h
@@ -34,6 +35,7 @@ import accuracy  # noqa: E402
 import collision  # noqa: E402
 import exact_modes  # noqa: E402
 import friction_sweep  # noqa: E402
+import pair_sweep  # noqa: E402
 import core  # noqa: E402
 import cost  # noqa: E402
 import full_scene  # noqa: E402
@@ -57,6 +59,7 @@ def settings(restart):
         "multicontact": (multicontact, [[]]),
         "collision": (collision, [["--rounds", "15"]]),
         "friction_sweep": (friction_sweep, [[]]),
+        "pair_sweep": (pair_sweep, [[]]),
         "exact_modes": (exact_modes, [[]]),
         "stability": (stability, [["--scenes", "binary,column"],
                                   ["--scenes", "drum", "--restart", slab],
@@ -89,7 +92,7 @@ PAGE = (("## 1. Cost of the model", [cost]),
         ("### Two-body collisions: YADE and `limitForce on`", [yade_collide]),
         ("## 3. Accuracy against cost", [accuracy]),
         ("### Many simultaneous contacts with exactRestitution", [multicontact]),
-        ("### Every single collision exact: exactCollision", [collision, friction_sweep, exact_modes]),
+        ("### Every single collision exact: exactCollision", [collision, friction_sweep, pair_sweep, exact_modes]),
         ("## 4. Stability map", [stability]),
         ("### The guard under the exact laws", [stability_exact]),
         ("## 5. Scaling: the full drum", [scaling]),

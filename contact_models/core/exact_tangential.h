@@ -178,21 +178,13 @@ struct ExactTangentialState {
     double forecastPull = 0;  // the pull it was given with
 };
 
-// Whether the normal force at this sample is within `allowance` (and 1e-3
-// of its scale) of what the last step foresaw; from the touch it is the
-// same motion.
-inline bool nearItsForecast(const CollisionStep& normal, const ExactTangentialState& e, double allowance)
-{
-    return normal.sinceStart >= 0.0 || std::fabs(normal.forceNow - e.forecast) <= 1e-3 * normal.forceScale + allowance;
-}
-
 // Whether the contact's normal force follows the motion its last step
 // foresaw: a binary contact does (to round-off); in a packing other contacts move it every step, and the
 // continuous motion each step samples afresh is no binary collision's. Such
 // a contact gets the per-step bound (cheap), not the cap followed through
 // the step, whose events a packing would trigger at every other step (a
 // settling column: an event in 17 % of its contact-steps, 1.7 times the
-// pair computation's cost).
+// pair computation's cost). From the touch it is the same motion.
 inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentialState& e)
 {
     // (a pair's pull, which the tangential force changes from step to step,
@@ -202,7 +194,8 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
     // by 90 % in a step, the force moved by 7 % of that change, and a bound
     // on this step's pull alone sent the contact to the per-step bound, 2.7 %
     // off at tc/5)
-    return nearItsForecast(normal, e, 0.5 * std::max(normal.pull, e.forecastPull));
+    return normal.sinceStart >= 0.0 || std::fabs(normal.forceNow - e.forecast) <=
+                                           1e-3 * normal.forceScale + 0.5 * std::max(normal.pull, e.forecastPull);
 }
 
 [[gnu::noinline]] inline Vec3 cappedTangentialStep(ExactTangentialState& e, Vec3& xi, const Vec3& w, const StepLaw& law,
@@ -219,13 +212,7 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
     } else {
         at = {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
     }
-    // A slide goes on from the last step on the cap only where the normal
-    // force is where that step foresaw it, with no allowance for a pull's
-    // change. Where it is not (allowed by followsItsForecast), the cap moved
-    // by that miss, and the spring keeps its own force: put onto a cap 44
-    // times its force near a contact's end, a grazing pair (mu 4278, vt/vn 5,
-    // 2 m/s, tc/10.4) stuck there and left 14 % off.
-    const bool onCap = e.sliding && nearItsForecast(normal, e, 0.0);
+    const bool onCap = e.sliding;  // (cappedFlow: unless the cap jumped)
     if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
         const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter, nullptr, onCap, e.force);
         e = {};

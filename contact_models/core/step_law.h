@@ -41,11 +41,19 @@ struct StepLaw {
     // spring and rate the step law gives there (phiX xi_{n+1} + phiV w_{n+1/2}),
     // and its rate k u - c (k xi + c u) (phiRateX xi_{n+1} + phiRateV w_{n+1/2}).
     double phiX = 0, phiV = 0, phiRateX = 0, phiRateV = 0;
-    // What ends the contact, one step on, must exceed endMargin x_n to go on:
-    // a next sample on the surface within round-off would fall to or below
-    // zero in the leapfrog, and the end step (its exit rate, its friction)
-    // would never run. The common step tests endX - endMargin (endGoX).
-    double endMargin = 0, endGoX = 0;
+    // What ends the contact, one step on, must exceed endMargin x_n (and,
+    // where the overlap's zero ends it, endPullMargin times the pull's
+    // change over the last step) to go on: a next sample that close to the
+    // surface may fall to or below zero in the leapfrog, and the end step
+    // (its exit rate, its friction) would never run. Round-off does that at
+    // endMargin. Between two spheres the leapfrog lands the overlap with the
+    // pull after this step's kick, which the tangential force changes: off
+    // by dt^2 / 2 times that change, allowed twice (a grazing pair landed
+    // 1.6e-9 m outside, the pull falling 650 m/s^2 a step: it left without
+    // its exit rate, 3.1 % off at tc/6; a margin of dt^2 times the pull
+    // itself ended a contact whose pull was 1.5 times its force 1.4 steps
+    // early, 8 % off). The common step tests endX - endMargin (endGoX).
+    double endMargin = 0, endGoX = 0, endPullMargin = 0;
     // The force's rate one step on along a free motion m (of x + pull / k):
     // rateStepX m.x + rateStepU m.u.
     double rateStepX = 0, rateStepU = 0;
@@ -99,6 +107,7 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.phiRateX = k * s.uX - c * s.phiX, s.phiRateV = k * s.uV - c * s.phiV;
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.endGoX = s.endX - s.endMargin;
+    s.endPullMargin = forceEnds ? 0.0 : dt * dt;
     s.rateStepX = s.o.forceRate(s.o.after({1.0, 0.0}, s.flowStep));
     s.rateStepU = s.o.forceRate(s.o.after({0.0, 1.0}, s.flowStep));
     s.inverseDt = 1.0 / dt;
@@ -121,6 +130,7 @@ struct CollisionState {
     // second step takes it as its previous sample. After the end step: the
     // time the free flight it set had left to part the bodies.
     double previousOffset = 0;
+    double previousPull = 0;  // the pull at the last step
 };
 
 struct CollisionStep {
@@ -233,7 +243,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // common step, which they would otherwise crowd with their transcendental
 // evaluations.
 [[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v,
-                                                          double pull, double pullRate)
+                                                          double pull, double pullRate, double pullChange)
 {
     const double dt = law.dt;
     CollisionStep r;
@@ -311,7 +321,16 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     const Motion ahead = law.o.after(now, law.flowStep);
     const double endAhead = endingAndSlope(ahead).first;
     r.forceNext = law.o.ending(ahead, true) - pull;
-    if (endAhead > law.endMargin * x) {  // on along the continuous motion: the next sample lies on it
+    // (within the margin the continuous contact ends just after the next
+    // sample: its end is looked for up to a step later; not ended there, it
+    // goes on)
+    double hi = dt, endHi = endAhead;
+    bool goesOn = endAhead > law.endMargin * x + law.endPullMargin * pullChange;
+    if (!goesOn && endAhead > law.endMargin * x) {
+        hi = 2.0 * dt, endHi = endingAndSlope(law.o.after(now, hi)).first;
+        goesOn = endHi > 0.0;
+    }
+    if (goesOn) {  // on along the continuous motion: the next sample lies on it
         r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
         return r;
@@ -320,7 +339,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     const double endNow = endingAndSlope(now).first;
     const double tau = endNow <= 0.0 ? 0.0
                                      : detail::bracketedNewton([&](double t) { return endingAndSlope(law.o.after(now, t)); },
-                                                               0.0, dt, endNow, dt * endNow / (endNow - endAhead));
+                                                               0.0, hi, endNow, hi * endNow / (endNow - endHi));
     r.endsAfter = tau;
     // The continuous contact parts with u_end^2 + 2 pull x_end (x_end: the
     // overlap left at the end of the force, zero for the overlap's end; to
@@ -361,13 +380,17 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     // the velocities of the half step before: with a turning normal that is
     // the samples' rate (x_n - x_{n-1}) / dt less pull dt / 2.
     v += 0.5 * law.dt * pull;
+    // (at a first step: the change pullRate gives over a step)
+    const double pullChange = state.phase == CollisionPhase::fresh ? std::fabs(pullRate) * law.dt
+                                                                     : std::fabs(pull - state.previousPull);
+    state.previousPull = pull;
     // A contact under way that goes on past this step: the previous sample
     // and this one define the motion. It costs nine products (five more with a
     // pull) and two comparisons over the plain law.
     const bool attractive = state.phase == CollisionPhase::attractive;
     if (attractive || state.phase == CollisionPhase::touching) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
-        if (law.endGoX * x + law.endV * vUsed + law.endA * pull > 0.0) {
+        if (law.endGoX * x + law.endV * vUsed + law.endA * pull > law.endPullMargin * pullChange) {
             state.previousOffset = 0.0;
             CollisionStep r;
             r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
@@ -387,7 +410,7 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     }
     // a contact held in a packing: the plain step law (no call out of line)
     if (state.phase == CollisionPhase::held) return detail::heldStep(law, x, v);
-    return detail::exactCollisionEnds(law, state, x, v, pull, pullRate);
+    return detail::exactCollisionEnds(law, state, x, v, pull, pullRate, pullChange);
 }
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)

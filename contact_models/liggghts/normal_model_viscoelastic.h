@@ -56,6 +56,7 @@ public:
         if (!exactCollision) return;
         history_offset = hsetup->add_history_value("viscoelastic_phase", "0");
         hsetup->add_history_value("viscoelastic_offset", "0");
+        hsetup->add_history_value("viscoelastic_pull", "0");
         cmb->add_history_offset("viscoelastic_phase", history_offset);  // tangential pournin then keeps more
     }
 
@@ -110,7 +111,7 @@ public:
         if (scdata.contact_flags) *scdata.contact_flags |= CONTACT_NORMAL_MODEL;
         if (!exactCollision || !scdata.contact_history) return;
         double* const h = &scdata.contact_history[history_offset];
-        for (int d = 0; d < 2; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
+        for (int d = 0; d < 3; ++d) h[d] = 0.0;  // apart: the next touch is a fresh contact
     }
 
     void beginPass(SurfacesIntersectData&, ForceData&, ForceData&) {}
@@ -145,7 +146,7 @@ private:
     {
         using namespace viscoelastic;
         double* const h = &sidata.contact_history[history_offset];
-        CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1]};
+        CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1], h[2]};
         // Between two spheres their relative tangential motion pulls the
         // centres apart at |vt|^2 / d; a flat wall's normal does not turn.
         double pull = 0.0;
@@ -161,7 +162,8 @@ private:
             return PairAtTouch{contactSpringDrive(sidata, n, Vec3(sidata.vtr1, sidata.vtr2, sidata.vtr3)),
                                vr - sidata.vn * n, meff, laws.mu, sidata.rinv};
         });
-        if (sidata.computeflag && sidata.shearupdate) h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset;
+        if (sidata.computeflag && sidata.shearupdate)
+            h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset, h[2] = state.previousPull;
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]
         forTangential.meff = meff;

@@ -33,6 +33,7 @@ struct Run {
     Vec3 V, wi, wj;                     // after the contact: the relative velocity and the spins (constant in flight)
     double energyIn = 0, energyOut = 0;  // kinetic and rotational, both beads
     double largestFt = 0, peakFn = 0;    // the largest tangential and normal force of a step
+    double largestPull = 0;              // the largest pull |vt|^2 / d of a step
 };
 
 constexpr double kRadius = 1.5e-3;
@@ -81,6 +82,7 @@ inline std::optional<Run> steppedPair(const Setup& c)
                                                  c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true);
             const Vec3 f = meff * s.force * n + ft;
             r.largestFt = std::max(r.largestFt, ft.norm()), r.peakFn = std::max(r.peakFn, std::fabs(meff * s.force));
+            r.largestPull = std::max(r.largestPull, pull);
             vi += dt * f / m, vj -= dt * f / m;
             wi -= dt * cr * n.cross(ft) / I, wj -= dt * cr * n.cross(ft) / I;
         } else if (touched) {

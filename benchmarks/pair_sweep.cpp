@@ -1,0 +1,66 @@
+// exactCollision between two spheres over a seeded random sweep, further
+// than the tests go: two glass beads stepped as LIGGGHTS steps them
+// (tests/contact_models/pair_stepper.h), each draw against the same mode at
+// tc/1000 from the same touch. One CSV row per draw: the draw, the pull
+// |vt|^2 / d at touch and its largest over the fine step's contact, each
+// against the contact's force scale pi vn / tc (per unit mass), the normal's
+// turn per step vt dt / d, how far the outcome lies from the fine step (of
+// the incoming speed) and the energy change.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "pair_stepper.h"
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"exactCollision's pair collisions over random draws, against the same mode at tc/1000"};
+    int draws = 10000, seed = 1;
+    double spin = 2.0, slopeMin = 0.0, vnMin = 0.01, ratioMax = 100.0, muMin = 0.05;
+    app.add_option("--draws", draws, "random collisions");
+    app.add_option("--seed", seed, "seed of the draws");
+    app.add_option("--spin", spin, "largest spin of a bead about a random axis, in vn / R (in half the draws)");
+    app.add_option("--slope-min", slopeMin, "vt/vn uniform from this to 5");
+    app.add_option("--vn-min", vnMin, "vn log-uniform from this to 2 m/s");
+    app.add_option("--ratio-max", ratioMax, "tc/dt from 5 to this");
+    app.add_option("--mu-min", muMin, "mu log-uniform from this to 100 (80 %) or 1e6");
+    CLI11_PARSE(app, argc, argv);
+    using viscoelastic::Vec3;
+    std::mt19937 g(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto spinOf = [&](double size) {
+        Vec3 axis(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+        return Vec3(size * u(g) * axis.normalized());
+    };
+    std::printf("en,et,mu,vn,vt_over_vn,spin_i,spin_j,limitForce,tc_over_dt,phase,pull_fraction,largest_pull_fraction,turn_per_step,off,"
+                "energy_change\n");
+    for (int i = 0; i < draws; ++i) {
+        pairstepper::Setup c;
+        c.p.tc = 1e-4;
+        c.p.en = 0.1 + 0.85 * u(g);
+        c.p.et = u(g) < 0.3 ? c.p.en : 0.1 + 0.85 * u(g);
+        c.p.mu = muMin * std::pow((u(g) < 0.8 ? 100.0 : 1e6) / muMin, u(g));
+        c.vn = vnMin * std::pow(2.0 / vnMin, u(g));
+        c.vt = (slopeMin + (5.0 - slopeMin) * u(g)) * c.vn;
+        if (u(g) < 0.5) {
+            const double size = spin * c.vn / pairstepper::kRadius;
+            c.spinI = spinOf(size), c.spinJ = spinOf(size);
+        }
+        c.limitForce = u(g) < 0.5;
+        c.ratio = u(g) < 0.3 ? std::round(5.0 + (ratioMax - 5.0) * u(g)) : 5.0 + (ratioMax - 5.0) * u(g) * u(g);
+        c.phase = 1.0 - u(g);
+        const auto coarse = pairstepper::steppedPair(c);
+        if (!coarse) continue;  // a step the model refuses
+        pairstepper::Setup fine = c;
+        fine.ratio = 1000.0;
+        const auto reference = pairstepper::steppedPair(fine);
+        if (!reference) continue;
+        const double d = 2.0 * pairstepper::kRadius, scale = viscoelastic::kPi * c.vn / c.p.tc;
+        std::printf("%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%d,%.4g,%.4g,%.3g,%.3g,%.3g,%.3e,%.3e\n", c.p.en, c.p.et, c.p.mu,
+                    c.vn, c.vt / c.vn, c.spinI.norm(), c.spinJ.norm(), c.limitForce ? 1 : 0, c.ratio, c.phase,
+                    c.vt * c.vt / d / scale, reference->largestPull / scale, c.vt * c.p.tc / c.ratio / d,
+                    pairstepper::apart(*coarse, *reference, c), coarse->energyOut / coarse->energyIn - 1.0);
+    }
+}
