@@ -192,7 +192,7 @@ TEST(ExactCollisionSweep, PairCollisionsNeverGainEnergyAndMeetTheTargetAgainstTh
 // force turns vt so that the pull, and with it the normal force, leaves the
 // last step's forecast every step. Restarting the slide as a free spring on
 // every such miss left it 2.9-4.6 % of the incoming speed off at all 64
-// phases; going on on the cap unless the cap more than doubled: 0.1-0.2 %.
+// phases; going on on the cap unless the cap more than doubled: 0.1-0.27 %.
 TEST(ExactCollisionSweep, ASpinningPairsSlideGoesOnOnTheCapWhileThePullMovesTheForce)
 {
     pairstepper::Setup c;
