@@ -67,6 +67,17 @@ double worstOverPhases(pairstepper::Setup c, const std::vector<double>& phases)
     return worst;
 }
 
+// The worst of 64 evenly spread start phases, printed, against the target
+// at c's step (0.5 % of the incoming speed at tc/dt >= 10, 1 % coarser).
+void meetsTheTargetAtSixtyFourPhases(const pairstepper::Setup& c)
+{
+    std::vector<double> phases;
+    for (int k = 0; k < 64; ++k) phases.push_back((k + 0.5) / 64.0);
+    const double worst = worstOverPhases(c, phases);
+    std::printf("worst of 64 phases against tc/1000: %.2e of the incoming speed\n", worst);
+    EXPECT_LT(worst, c.ratio >= 10.0 ? 0.005 : 0.01);
+}
+
 }  // namespace
 
 // en, et in [0.1, 0.95] (et = en in 30 % of draws: the case above), mu
@@ -201,11 +212,7 @@ TEST(ExactCollisionSweep, ASpinningPairsSlideGoesOnOnTheCapWhileThePullMovesTheF
     c.spinI = Vec3(100.14031978701904, -17.542133544318137, 42.860406929636852);
     c.spinJ = Vec3(1881.4631166999461, -4307.9997669497079, 3629.2943303175339);
     c.ratio = 10.4544;
-    std::vector<double> phases;
-    for (int k = 0; k < 64; ++k) phases.push_back((k + 0.5) / 64.0);
-    const double worst = worstOverPhases(c, phases);
-    std::printf("worst of 64 phases against tc/1000: %.2e of the incoming speed\n", worst);
-    EXPECT_LT(worst, 0.005);
+    meetsTheTargetAtSixtyFourPhases(c);
 }
 
 // A grazing pair (en 0.2643, et 0.8674, mu 1e6, vn 1.865 m/s, vt/vn 2,
@@ -245,11 +252,7 @@ TEST(ExactCollisionSweep, FastSpinningPairKeepsFollowingItsForecastWhenThePullFa
     c.spinI = Vec3(-32.917340091687784, -454.01563282534369, 826.73801536325175);
     c.spinJ = Vec3(627.99970313889935, 900.52052274461471, 865.09242471695575);
     c.ratio = 5.0;
-    std::vector<double> phases;
-    for (int k = 0; k < 64; ++k) phases.push_back((k + 0.5) / 64.0);
-    const double worst = worstOverPhases(c, phases);
-    std::printf("worst of 64 phases against tc/1000: %.2e of the incoming speed\n", worst);
-    EXPECT_LT(worst, 0.01);
+    meetsTheTargetAtSixtyFourPhases(c);
 }
 
 // A grazing pair whose normal force near the end of the contact missed its
