@@ -18,39 +18,20 @@ int main(int argc, char** argv)
 {
     CLI::App app{"exactCollision's pair collisions over random draws, against the same mode at tc/1000"};
     int draws = 10000, seed = 1;
-    double spin = 2.0, slopeMin = 0.0, vnMin = 0.01, ratioMax = 100.0, muMin = 0.05;
+    pairstepper::Ranges r;
     app.add_option("--draws", draws, "random collisions");
     app.add_option("--seed", seed, "seed of the draws");
-    app.add_option("--spin", spin, "largest spin of a bead about a random axis, in vn / R (in half the draws)");
-    app.add_option("--slope-min", slopeMin, "vt/vn uniform from this to 5");
-    app.add_option("--vn-min", vnMin, "vn log-uniform from this to 2 m/s");
-    app.add_option("--ratio-max", ratioMax, "tc/dt from 5 to this");
-    app.add_option("--mu-min", muMin, "mu log-uniform from this to 100 (80 %) or 1e6");
+    app.add_option("--spin", r.spin, "largest spin of a bead about a random axis, in vn / R (in half the draws)");
+    app.add_option("--slope-min", r.slopeMin, "vt/vn uniform from this to 5");
+    app.add_option("--vn-min", r.vnMin, "vn log-uniform from this to 2 m/s");
+    app.add_option("--ratio-max", r.ratioMax, "tc/dt from 5 to this");
+    app.add_option("--mu-min", r.muMin, "mu log-uniform from this to 100 (80 %) or 1e6");
     CLI11_PARSE(app, argc, argv);
-    using viscoelastic::Vec3;
     std::mt19937 g(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    const auto spinOf = [&](double size) {
-        Vec3 axis(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
-        return Vec3(size * u(g) * axis.normalized());
-    };
-    std::printf("en,et,mu,vn,vt_over_vn,spin_i,spin_j,limitForce,tc_over_dt,phase,pull_fraction,largest_pull_fraction,turn_per_step,off,"
-                "energy_change\n");
+    std::printf("en,et,mu,vn,vt_over_vn,spin_i,spin_j,limitForce,tc_over_dt,phase,pull_fraction,largest_pull_fraction,"
+                "turn_per_step,off,energy_change\n");
     for (int i = 0; i < draws; ++i) {
-        pairstepper::Setup c;
-        c.p.tc = 1e-4;
-        c.p.en = 0.1 + 0.85 * u(g);
-        c.p.et = u(g) < 0.3 ? c.p.en : 0.1 + 0.85 * u(g);
-        c.p.mu = muMin * std::pow((u(g) < 0.8 ? 100.0 : 1e6) / muMin, u(g));
-        c.vn = vnMin * std::pow(2.0 / vnMin, u(g));
-        c.vt = (slopeMin + (5.0 - slopeMin) * u(g)) * c.vn;
-        if (u(g) < 0.5) {
-            const double size = spin * c.vn / pairstepper::kRadius;
-            c.spinI = spinOf(size), c.spinJ = spinOf(size);
-        }
-        c.limitForce = u(g) < 0.5;
-        c.ratio = u(g) < 0.3 ? std::round(5.0 + (ratioMax - 5.0) * u(g)) : 5.0 + (ratioMax - 5.0) * u(g) * u(g);
-        c.phase = 1.0 - u(g);
+        const pairstepper::Setup c = pairstepper::drawPair(g, r);
         const auto coarse = pairstepper::steppedPair(c);
         if (!coarse) continue;  // a step the model refuses
         pairstepper::Setup fine = c;

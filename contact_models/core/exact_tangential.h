@@ -212,13 +212,13 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
     } else {
         at = {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
     }
-    const bool onCap = e.sliding;  // (cappedFlow: unless the cap jumped)
+    // (a slide goes on on the cap unless the cap jumped: cappedFlow)
     if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
-        const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter, nullptr, onCap, e.force);
+        const CappedFlow last = cappedFlow(law.o, at, src, 0.0, normal.endsAfter, nullptr, e.sliding, e.force);
         e = {};
         return (last.end.u - w) / dt;
     }
-    const CappedFlow step = cappedFlow(law.o, at, src, 0.0, dt, &law.flowStep, onCap, e.force);
+    const CappedFlow step = cappedFlow(law.o, at, src, 0.0, dt, &law.flowStep, e.sliding, e.force);
     e.sliding = step.sliding;
     e.force = step.sliding ? Vec3(law.o.k * step.end.xi + law.o.c * step.end.u) : Vec3::Zero();
     const Vec3 next = step.displacement / dt;  // w_{n+1/2}

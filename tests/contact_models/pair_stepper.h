@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <random>
 
 #include "core/collision.h"
 #include "core/stability.h"
@@ -93,6 +94,40 @@ inline std::optional<Run> steppedPair(const Setup& c)
     r.V = vi - vj, r.wi = wi, r.wj = wj;
     r.energyOut = energy();
     return r;
+}
+
+// The ranges of a random pair collision (drawPair): en, et in [0.1, 0.95]
+// (et = en in 30 %), mu log-uniform from muMin to 100 (80 %) or to 1e6, vn
+// log-uniform from vnMin to 2 m/s, vt/vn uniform from slopeMin to 5, in half
+// the draws a spin on each bead up to `spin` vn / R about a random axis,
+// limitForce on or off, tc/dt from 5 to ratioMax (integer in 30 %), the start
+// phase uniform; tc 1e-4 s.
+struct Ranges {
+    double spin = 2.0, slopeMin = 0.0, vnMin = 0.01, ratioMax = 100.0, muMin = 0.05;
+};
+
+inline Setup drawPair(std::mt19937& g, const Ranges& r)
+{
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto spinOf = [&](double size) {
+        Vec3 axis(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
+        return Vec3(size * u(g) * axis.normalized());
+    };
+    Setup c;
+    c.p.tc = 1e-4;
+    c.p.en = 0.1 + 0.85 * u(g);
+    c.p.et = u(g) < 0.3 ? c.p.en : 0.1 + 0.85 * u(g);
+    c.p.mu = r.muMin * std::pow((u(g) < 0.8 ? 100.0 : 1e6) / r.muMin, u(g));
+    c.vn = r.vnMin * std::pow(2.0 / r.vnMin, u(g));
+    c.vt = (r.slopeMin + (5.0 - r.slopeMin) * u(g)) * c.vn;
+    if (u(g) < 0.5) {
+        const double size = r.spin * c.vn / kRadius;
+        c.spinI = spinOf(size), c.spinJ = spinOf(size);
+    }
+    c.limitForce = u(g) < 0.5;
+    c.ratio = u(g) < 0.3 ? std::round(5.0 + (r.ratioMax - 5.0) * u(g)) : 5.0 + (r.ratioMax - 5.0) * u(g) * u(g);
+    c.phase = 1.0 - u(g);
+    return c;
 }
 
 // How far one outcome of c leaves from another: the largest change of the

@@ -133,11 +133,9 @@ TEST(ExactCollisionSweep, WallCollisionsNeverGainEnergyAndDoNotDependOnTheStep)
 }
 
 // Two spheres at incidence, stepped by the core as LIGGGHTS steps them
-// (pair_stepper.h), over a seeded random sweep: en, et in [0.1, 0.95] (et =
-// en in 30 %), mu log-uniform in [0.05, 100] (80 %) or [0.05, 1e6], vt/vn
-// uniform in [0, 5], vn log-uniform in [0.01, 2] m/s, a spin on each bead up
-// to 2 vn / R about a random axis in half the draws, limitForce on or off,
-// tc/dt from 5 to 100 (integer in 30 %), the start phase uniform. Between
+// (pair_stepper.h), over a seeded random sweep of drawPair's default ranges
+// (mu 0.05-1e6, vt/vn 0-5, vn 0.01-2 m/s, spins to 2 vn / R, tc/5-tc/100,
+// limitForce on and off, the start phase uniform). Between
 // two spheres the normal turns within a step and the pull |vt|^2 / d is
 // taken per step, so the scheme is not exact to round-off as on a wall; the
 // claim is the target: against the same mode at tc/1000 from the same touch,
@@ -150,29 +148,11 @@ TEST(ExactCollisionSweep, WallCollisionsNeverGainEnergyAndDoNotDependOnTheStep)
 TEST(ExactCollisionSweep, PairCollisionsNeverGainEnergyAndMeetTheTargetAgainstTheFineStep)
 {
     std::mt19937 g(4712);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     int run = 0;
     double worstGain = -1.0, worst10 = 0.0, worstCoarse = 0.0;
-    const auto spin = [&](double size) {
-        Vec3 axis(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5);
-        return Vec3(size * u(g) * axis.normalized());
-    };
     for (int i = 0; i < 3000; ++i) {
-        pairstepper::Setup c;
-        c.p.tc = 1e-4;
-        c.p.en = 0.1 + 0.85 * u(g);
-        c.p.et = u(g) < 0.3 ? c.p.en : 0.1 + 0.85 * u(g);
-        c.p.mu = 0.05 * std::pow(u(g) < 0.8 ? 2e3 : 2e7, u(g));
-        c.vn = 0.01 * std::pow(200.0, u(g));
-        c.vt = 5.0 * u(g) * c.vn;
-        if (u(g) < 0.5) {
-            const double size = 2.0 * c.vn / pairstepper::kRadius;
-            c.spinI = spin(size), c.spinJ = spin(size);
-        }
-        c.limitForce = u(g) < 0.5;
-        const double ratio = u(g) < 0.3 ? std::round(5.0 + 95.0 * u(g)) : 5.0 + 95.0 * u(g) * u(g);
-        c.phase = 1.0 - u(g);
-        c.ratio = ratio;
+        pairstepper::Setup c = pairstepper::drawPair(g, {});
+        const double ratio = c.ratio;
         const auto coarse = pairstepper::steppedPair(c);
         if (!coarse) continue;
         c.ratio = 1000.0;
