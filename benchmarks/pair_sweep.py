@@ -102,8 +102,12 @@ def section(res, m, rows):
         f"No draw whose largest pull stayed below {bound:.3f} of the force scale missed the target "
         f"({sum(r['largest_pull_fraction'] < bound for r in rows)} of {len(rows)} draws, both seeds); the seeds "
         "disagree on where the misses start, so read that as an order of magnitude, not a bound. ")
+    gains = sum(r["energy_change"] > 1e-9 for r in rows)
+    answer = (f"**Between two spheres {len(misses(rows))} of {len(rows)} random collisions miss the target, all where "
+              f"the centrifugal pull passed {bound:.3f} of the force scale (defined below); {gains} gain energy.** " if bound is not None else
+              f"**All {len(rows)} random collisions between two spheres meet the target; {gains} gain energy.** ")
     return (
-        f"Pair collisions over random draws ({m['draws']} per set and seed), each against the same mode at tc/1000 from the "
+        answer + f"Pair collisions over random draws ({m['draws']} per set and seed), each against the same mode at tc/1000 from the "
         "same touch;\nthe target is 0.5 % of the incoming speed at tc/dt >= 10 and 1 % coarser. "
         "The largest pull is the centrifugal\npull |vt|²/d at its largest over the contact (the fine step's) "
         "against the contact's force scale π vn / tc,\nboth per unit mass: where it stays small the pull's change "
