@@ -63,6 +63,12 @@ def speeds(x):
     return " and ".join(f"{v:.1f}" for v in x) if all(v is not None for v in x) else "not found in every history"
 
 
+def within(err):
+    """A relative error as a bound a reader can use: below 1e-4 % is round-off of the measurement."""
+    e = 100 * abs(float(err))
+    return "within 0.0001 %" if e < 1e-4 else f"error {e:.2g} %"
+
+
 def block():
     study = rows(REPO / "docs/drum/study_thesis.csv")
     se = [1e3 * float(r["Hc_se_m"]) for r in study]
@@ -73,25 +79,31 @@ def block():
     cost = float(nominal40["cpu_s_per_simulated_s"]) / float(exact5["cpu_s_per_simulated_s"])
     return "\n".join([
         BEGIN,
-        para(f"**One collision, accurate and cheap.** With a timestep of a fifth of the contact duration (dt = tc/5) "
-        f"and `exactRestitution on`, two colliding beads part with the requested restitution coefficient en (error "
-        f"{100 * abs(float(exact5['restitution_err'])):.0e} %, on average over where within a timestep the contact "
-        f"begins) after a contact lasting tc. The plain law needs tc/40 to come within 0.5 % of en "
-        f"({100 * float(nominal40['restitution_err']):+.2f} %), at {cost:.1f} times the CPU time on a 6 mm slice of the "
-        f"drum ({16336:,} beads), and still misses by {100 * float(nominal81['restitution_err']):+.2f} % at the thesis' "
-        f"tc/81 ([benchmarks](docs/benchmarks.md#accuracy-against-cost))."),
+        para(f"**Collisions exact on average at a coarse step; every single one with `exactCollision`.** With a "
+        f"timestep of a fifth of the contact duration (dt = tc/5) and `exactRestitution on`, the setting for flows, "
+        f"colliding beads part with the requested restitution coefficient en on average over where within a timestep "
+        f"the contact begins ({within(exact5['restitution_err'])}), after a contact lasting tc; a single collision "
+        "still scatters with that start phase, which `exactCollision on` removes at a higher cost per contact "
+        "([which setting](docs/guide.md#which-exactness-nominal-exactrestitution-or-exactcollision)). The nominal law "
+        f"needs tc/40 to come within 0.5 % of en on average ({100 * float(nominal40['restitution_err']):+.2f} %), at "
+        f"{cost:.1f} times the CPU time on a 6 mm slab of the drum ({16336:,} beads), and still misses by "
+        f"{100 * float(nominal81['restitution_err']):+.2f} % at the thesis' tc/81 "
+        "([benchmarks](docs/benchmarks.md#accuracy-against-cost))."),
         "",
         para(f"**The drum's nine speeds** with the thesis' materials (Table 3.1), averaged over "
         f"{min(revolutions):.1f}–{max(revolutions):.1f} revolutions in steady flow (standard errors of Hc "
-        f"{min(se):.2f}–{max(se):.2f} mm). Heights are above the drum's axis (negative: below it); the bed turn is "
-        "the bed's rotation over the drum's (1: the drum carries the bed; about 0.5: the bed rides on rolling beads):"),
+        f"{min(se):.2f}–{max(se):.2f} mm; [the study](docs/drum/study_thesis.md)). Heights are above the drum's "
+        "axis (negative: below it); the bed turn is the bed's rotation over the drum's (1: the drum carries the bed; "
+        "about 0.5: the bed rides on rolling beads):"),
         "",
         speeds_table(study),
         "",
         para(f"**Where the bed lets go of the drum.** Raising the speed by one rpm every 1.5 s from a carried 21 rpm "
         f"bed, the bed lets go at {speeds(thesis)} rpm in two independent runs with the thesis' materials (bead–drum "
         f"friction 0.95), and at {speeds(yade)} rpm with YADE 1.12's settings (bead–drum friction 0.5, wall contacts "
-        "with half the bead's mass, no attractive force at the end of a contact). The thesis saw its drop at 28 rpm."),
+        "with half the bead's mass, no attractive force at the end of a contact; the nominal law at tc/10), "
+        "bracketing the thesis' drop at 27–28 rpm. With two histories a set the difference is suggestive, not "
+        "established ([the slip test](docs/drum/slip_test.md))."),
         END])
 
 
