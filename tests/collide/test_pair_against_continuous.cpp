@@ -25,6 +25,7 @@ namespace {
 
 struct Outcome {
     pairstepper::Setup c;  // as drawn (limitForce off), c.ratio the drawn tc/dt
+    pairstepper::Run law;  // the reference's outcome (V, wi, wj)
     double fine;           // the step at tc/1000 off the reference
     double coarse;         // the step at c.ratio off the reference
     double pull;           // the largest pull |vt|^2 / d of the fine step over the force scale pi vn / tc
@@ -59,7 +60,7 @@ const std::vector<Outcome>& outcomes()
             pairstepper::Run ref;
             ref.V = {e.v[0], e.v[1], e.v[2]}, ref.wi = {e.wi[0], e.wi[1], e.wi[2]};
             ref.wj = {e.wj[0], e.wj[1], e.wj[2]};
-            out.push_back({c, pairstepper::apart(*fine, ref, c), pairstepper::apart(*coarse, ref, c),
+            out.push_back({c, ref, pairstepper::apart(*fine, ref, c), pairstepper::apart(*coarse, ref, c),
                            fine->largestPull / (viscoelastic::kPi * c.vn / c.p.tc),
                            e.change / std::hypot(c.vn, c.vt)});
         }
@@ -99,8 +100,8 @@ void printDistribution(const char* what, Take take, Of of)
                 above(1e-4), above(1e-3), above(5e-3), above(1e-2));
 }
 
-// One test for the three checks below, so that ctest (a process per test)
-// steps and integrates the draws once.
+// One test for the checks below, (a) without and with spin and (b), so that
+// ctest (a process per test) steps and integrates the draws once.
 //
 // The reference is converged far below what is compared: between N = 1e4 and
 // 2e4 steps its exit moves by under 1e-6 of the incoming speed (measured
@@ -114,29 +115,29 @@ void printDistribution(const char* what, Take take, Of of)
 // tc/1000 to tc/2000 and again to tc/4000: the steps converge to the law),
 // so 1e-5 leaves that a margin of 7 and admits no departure from the law.
 //
-// On the draws WITH spin this does not hold (the DISABLED test below; run
-// it with --gtest_also_run_disabled_tests).  Measured, 976 spinning draws:
-// 76 at 1e-5 or more off, 23 above 1e-4, 1 above 1e-3 (2.25e-3: en 0.747,
-// mu 0.659, vn 1.50 m/s, vt/vn 3.10, tc/dt 8.25), none above 0.5 %.  65 of
-// the 76 stay at least half as far off at tc/8000, the 23 above 1e-4 within
-// 5 % as far: the steps converge to another law there.  They slide (mu
-// 0.2-6.1), and nearly all of the offset goes with the spin component about
-// the normal: without it the same draws lie at most 4.5e-5 off (the spin
-// about the normal feeds the drive U through the turning normal, -(W.n)
-// n x n' with W = Ri wi + Rj wj, which turns the sliding force).  The other
-// 11 (1.0e-5 to 2.3e-5; mu 2.6-1.2e5, fast pairs) are the tc/1000 step's
-// own error: at most 6.1e-6 at tc/8000.  The reference is not the one
-// off: a literal fine stepper of the law, written apart
-// (tests/collide/test_continuous_pair.cpp), agrees with it on the worst of
-// these draws to 1e-7.
+// On the draws WITH spin the same holds up to the first-order step error:
+// measured, 976 spinning draws, 959 within 1e-5 at tc/1000 (worst 2.73e-5);
+// the other 17 (mu 0.66 to 1.2e5, fast pairs, 1.04e-5 to 2.73e-5) halve as the
+// step halves and lie within 2.4e-6 to 6.9e-6 at tc/4000, 5e-7 to 1.6e-6 at
+// tc/16000. So a draw off by 1e-5 or more at tc/1000 is stepped again at
+// tc/4000, where it must lie within 1e-5 and at most half as far off. Before a
+// slide that the falling cap drives against the slip turned as the law turns
+// it (detail::slidingDirection in core/capped_flow.h), 76 spinning draws lay
+// 1e-5 or more off, 23 above 1e-4, the worst 2.25e-3 (en 0.747, mu 0.659, vn
+// 1.50 m/s, vt/vn 3.10, spins (-0.07 0.32 -0.36) and (1.04 -0.20 -0.92) vn/R,
+// tc/dt 8.25), and 65 of the 76 stayed at least half as far off at tc/8000:
+// the steps converged to another law. That takes a sideways loading rate (a
+// spin about the normal, or across it), hence spinning draws only. The
+// reference is not the one off: a literal fine stepper of the law, written
+// apart (tests/collide/test_continuous_pair.cpp), agrees with it on the worst
+// of these draws to 1e-7.
 //
 // (b) The coarse step against the law: the project's target, 0.5 % of the
 // incoming speed at tc/dt >= 10, 1 % coarser (the same as against its own
 // step at tc/1000 in tests/contact_models/test_collision_sweep.cpp, here
 // against the law itself).  Measured: at tc/dt >= 10 (1679 draws) at most
-// 2.27e-3, 5 above 1e-3; coarser (294) at most 2.67e-3, 14 above 1e-3; the
-// spinning draws' departure from the law (above) included.
-TEST(PairAgainstContinuous, StepsFollowTheLawWithoutSpinAndMeetTheTarget)
+// 2.27e-3, 5 above 1e-3; coarser (294) at most 2.67e-3, 14 above 1e-3.
+TEST(PairAgainstContinuous, StepsFollowTheLawAndMeetTheTarget)
 {
     double worst = 0.0;
     for (const Outcome& o : outcomes()) worst = std::max(worst, o.reference);
@@ -145,7 +146,7 @@ TEST(PairAgainstContinuous, StepsFollowTheLawWithoutSpinAndMeetTheTarget)
     EXPECT_LT(worst, 1e-6);
     EXPECT_GT(outcomes().size(), 0.95 * kDraws);
 
-    int run = 0;  // (a)
+    int run = 0;  // (a) without spin
     for (const Outcome& o : outcomes()) {
         if (spinning(o)) continue;
         ++run;
@@ -154,7 +155,24 @@ TEST(PairAgainstContinuous, StepsFollowTheLawWithoutSpinAndMeetTheTarget)
     EXPECT_GT(run, 0.4 * kDraws);
     printDistribution("tc/1000 off the law, no spin:", [](const Outcome& o) { return !spinning(o); },
                       [](const Outcome& o) { return o.fine; });
+
+    int finer = 0;  // (a) with spin: at tc/4000 where tc/1000's own error is 1e-5 or more
+    double worstFiner = 0.0;
+    for (const Outcome& o : outcomes()) {
+        if (!spinning(o) || o.fine < 1e-5) continue;
+        ++finer;
+        pairstepper::Setup c = o.c;
+        c.ratio = 4000.0;
+        const auto run = pairstepper::steppedPair(c);
+        ASSERT_TRUE(run) << describe(o);
+        const double off = pairstepper::apart(*run, o.law, o.c);
+        EXPECT_LT(off, 1e-5) << "spinning, tc/4000 off the law: " << off << ", " << describe(o);
+        EXPECT_LT(off, 0.5 * o.fine) << "spinning, tc/4000 off the law: " << off << ", " << describe(o);
+        worstFiner = std::max(worstFiner, off);
+    }
     printDistribution("tc/1000 off the law, spinning:", spinning, [](const Outcome& o) { return o.fine; });
+    std::printf("%d spinning draws 1e-5 or more off at tc/1000; at tc/4000 at most %.2e\n", finer, worstFiner);
+    EXPECT_LT(finer, 40);  // (measured 17 of 976: the step's own error, rare)
 
     for (const Outcome& o : outcomes())  // (b)
         EXPECT_LT(o.coarse, o.c.ratio >= 10.0 ? 0.005 : 0.01) << "the coarse step off the law: " << describe(o);
@@ -164,17 +182,35 @@ TEST(PairAgainstContinuous, StepsFollowTheLawWithoutSpinAndMeetTheTarget)
                       [](const Outcome& o) { return o.coarse; });
 }
 
-// (a) on the spinning draws: fails (see above).
-TEST(PairAgainstContinuous, DISABLED_TheFineStepFollowsTheLawWithSpin)
+// The smallest case of the above: one bead spinning about the normal alone
+// (vn/R = 667 rad/s at 1 m/s), vt/vn 3, en = et 0.7, mu 1: it sticks, then
+// the falling cap drives the slide against the slip near the end. Left
+// unturned there, the steps met another law: 1.49e-3 of the incoming speed
+// off at tc/1000, tc/4000 and tc/16000. Measured now 1.4e-5, 3.4e-6 and
+// 1.0e-6: first order, towards the law.
+TEST(PairAgainstContinuous, ATwistOnASlidingPairTurnsItsForceAsTheLawDoes)
 {
-    int misses = 0;
-    for (const Outcome& o : outcomes()) {
-        if (!spinning(o)) continue;
-        EXPECT_LT(o.fine, 1e-5) << describe(o);
-        misses += o.fine >= 1e-5;
+    const double R = pairstepper::kRadius, m = 2500.0 * 4.0 / 3.0 * viscoelastic::kPi * R * R * R;
+    pairstepper::Setup c;
+    c.p = {1e-4, 0.7, 0.7, 1.0};
+    c.vn = 1.0, c.vt = 3.0, c.spinI = viscoelastic::Vec3(c.vn / R, 0.0, 0.0), c.phase = 0.5;
+    const continuous::PairExit e = continuous::pairCollision({c.p.tc, c.p.en, c.p.et, c.p.mu}, {m, R}, {m, R},
+                                                             {{-2.0 * R, 0.0, 0.0}, {c.vn, c.vt, 0.0},
+                                                              {c.spinI.x(), 0.0, 0.0}, {0.0, 0.0, 0.0}});
+    pairstepper::Run law;
+    law.V = {e.v[0], e.v[1], e.v[2]}, law.wi = {e.wi[0], e.wi[1], e.wi[2]}, law.wj = {e.wj[0], e.wj[1], e.wj[2]};
+    std::vector<double> off;
+    for (double ratio : {1000.0, 4000.0, 16000.0}) {
+        c.ratio = ratio;
+        const auto run = pairstepper::steppedPair(c);
+        ASSERT_TRUE(run);
+        off.push_back(pairstepper::apart(*run, law, c));
     }
-    printDistribution("tc/1000 off the law, spinning:", spinning, [](const Outcome& o) { return o.fine; });
-    std::printf("%d spinning draws 1e-5 or more off\n", misses);
+    std::printf("a twist alone, sliding: off the law %.2e, %.2e, %.2e at tc/1000, tc/4000, tc/16000\n", off[0], off[1],
+                off[2]);
+    EXPECT_LT(off[0], 3e-5);
+    EXPECT_LT(off[1], 1e-5);
+    EXPECT_LT(off[2], 0.5 * off[1]);
 }
 
 }  // namespace
