@@ -32,12 +32,9 @@ int main(int argc, char** argv)
                 "turn_per_step,off,energy_change\n");
     for (int i = 0; i < draws; ++i) {
         const pairstepper::Setup c = pairstepper::drawPair(g, r);
-        const auto coarse = pairstepper::steppedPair(c);
-        if (!coarse) continue;  // a step the model refuses
-        pairstepper::Setup fine = c;
-        fine.ratio = 1000.0;
-        const auto reference = pairstepper::steppedPair(fine);
-        if (!reference) continue;
+        const auto runs = pairstepper::coarseAndFine(c);
+        if (!runs) continue;  // a step the model refuses
+        const pairstepper::Run *coarse = &runs->coarse, *reference = &runs->fine;
         const double d = 2.0 * pairstepper::kRadius, scale = viscoelastic::kPi * c.vn / c.p.tc;
         std::printf("%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%d,%.4g,%.4g,%.3g,%.3g,%.3g,%.3e,%.3e\n", c.p.en, c.p.et, c.p.mu,
                     c.vn, c.vt / c.vn, c.spinI.norm(), c.spinJ.norm(), c.limitForce ? 1 : 0, c.ratio, c.phase,

@@ -131,8 +131,10 @@ double firstPeak(Rate rate, double t, double end, double rate0)
 // cap drives against the slip (near a contact's end) turns away from -g.
 // Unturned there, pairs with a sideways g (a spin about the normal: a; or
 // across it: u) converged to another law, up to 2.3e-3 of the incoming speed
-// off at tc/1000 and at tc/16000. On one line (a wall's slide: u, a and F
-// collinear, to round-off) there is no side to turn to.
+// off at tc/1000 and at tc/16000. On one line (a slide on a flat wall with
+// no sideways force on the bead: u, a and F collinear, to round-off) there is
+// no side to turn to; a sine below 1e-9 counts as one line, and a force
+// within that of antiparallel to g is not turned.
 struct SlideTurn {
     Vec3 mean, end;
 };
@@ -167,8 +169,9 @@ inline std::optional<SlideTurn> slidingDirection(const FreeOscillator& o, const 
         meanSin = 2.0 * std::atan(t0 * -std::expm1(-decay) / (1.0 + t0 * t1)) / decay;
     }
     const double q = 1.0 / (1.0 + t1 * t1);
+    // (normalised: near antiparallel `side` keeps round-off along g, 1e-16 / sine)
     return SlideTurn{(meanCos * target + meanSin * side).normalized(),
-                     ((1.0 - t1 * t1) * q) * target + (2.0 * t1 * q) * side};
+                     (((1.0 - t1 * t1) * q) * target + (2.0 * t1 * q) * side).normalized()};
 }
 
 }  // namespace detail

@@ -48,12 +48,9 @@ const std::vector<Outcome>& outcomes()
         for (int i = 0; i < kDraws; ++i) {
             pairstepper::Setup c = pairstepper::drawPair(g, {});
             c.limitForce = false;
-            const auto coarse = pairstepper::steppedPair(c);
-            if (!coarse) continue;  // a step the model refuses
-            pairstepper::Setup f = c;
-            f.ratio = 1000.0;
-            const auto fine = pairstepper::steppedPair(f);
-            if (!fine) continue;
+            const auto runs = pairstepper::coarseAndFine(c);
+            if (!runs) continue;  // a step the model refuses
+            const pairstepper::Run *coarse = &runs->coarse, *fine = &runs->fine;
             const continuous::PairTouch touch{{-2.0 * R, 0.0, 0.0}, {c.vn, c.vt, 0.0}, arr(c.spinI), arr(c.spinJ)};
             const continuous::PairExit e =
                 continuous::pairCollision({c.p.tc, c.p.en, c.p.et, c.p.mu}, bead, bead, touch);

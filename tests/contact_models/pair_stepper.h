@@ -138,15 +138,27 @@ inline double apart(const Run& a, const Run& b, const Setup& c)
     return off / std::hypot(c.vn, c.vt);
 }
 
-// The collision at c.ratio against the same at tc/1000 (same touch).
-// nullopt: a step the model refuses.
-inline std::optional<double> offTheFineStep(Setup c)
+// The collision at c.ratio and the same at tc/1000 (same touch). nullopt:
+// a step the model refuses.
+struct CoarseAndFine {
+    Run coarse, fine;
+};
+inline std::optional<CoarseAndFine> coarseAndFine(Setup c)
 {
     const auto coarse = steppedPair(c);
+    if (!coarse) return std::nullopt;
     c.ratio = 1000.0;
     const auto fine = steppedPair(c);
-    if (!coarse || !fine) return std::nullopt;
-    return apart(*coarse, *fine, c);
+    if (!fine) return std::nullopt;
+    return CoarseAndFine{*coarse, *fine};
+}
+
+// The collision at c.ratio against the same at tc/1000.
+inline std::optional<double> offTheFineStep(const Setup& c)
+{
+    const auto runs = coarseAndFine(c);
+    if (!runs) return std::nullopt;
+    return apart(runs->coarse, runs->fine, c);
 }
 
 }  // namespace pairstepper
