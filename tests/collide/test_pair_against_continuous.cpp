@@ -32,7 +32,7 @@ struct Outcome {
     double reference;      // the reference's change between N and 2N steps, of the incoming speed
 };
 
-// 2000 draws: about 23 s of one core in Release (the reference ~13 ms a draw)
+// 2000 draws: about 18 s of one core in Release (the reference ~10 ms a draw)
 constexpr int kDraws = 2000;
 
 // All draws, stepped and integrated once for the tests below.

@@ -92,18 +92,12 @@ struct Law {
   // reaches the cap (to the root's tolerance): put it on the cap.
   // `zero`: F is 0 there (to its round-off, which a large mu would turn
   // into a spring force): the cap is 0.
-  bool reset(State& y, bool onset = false, bool zero = false) const {
-    const At a = at(y);
+  bool reset(State& y, const At& a, bool onset = false, bool zero = false) const {
     const double cap = zero ? 0.0 : a.cap;
     if (!(a.trial > cap) && !(onset && a.trial > 0)) return false;
     const V3 phi = (kt * y.xi + ct * a.u) * (std::min(cap, a.trial) / a.trial);
     y.xi = (phi - ct * a.u) / kt;
     return true;
-  }
-  // How far the spring's force lies above the cap (sticking: <= 0).
-  double excess(const State& y) const {
-    const At a = at(y);
-    return a.trial - a.cap;
   }
 };
 
@@ -170,8 +164,13 @@ PairExit pairCollisionSteps(const Material& m, const Sphere& si, const Sphere& s
   };
   auto overlap = [&](const State& s) { return law.at(s).x; };
   auto force = [&](const State& s) { return law.at(s).f; };
-  auto excess = [&](const State& s) { return law.excess(s); };
-  bool sliding = law.reset(y);  // a slide from the touch: ct |U| over the cap
+  // how far the spring's force lies above the cap (sticking: <= 0)
+  auto excess = [&](const State& s) {
+    const Law::At a = law.at(s);
+    return a.trial - a.cap;
+  };
+  bool sliding = law.reset(y, law.at(y));  // a slide from the touch: ct |U| over the cap
+  Law::At ay = law.at(y);  // the law's quantities at y, and below at `next`
   out.slides = sliding ? 1 : 0;
   for (long k = 0;; ++k) {
     if (k >= maxSteps) throw std::runtime_error("continuous::pairCollision: the contact does not end");
@@ -182,33 +181,35 @@ PairExit pairCollisionSteps(const Material& m, const Sphere& si, const Sphere& s
     // jumps (by kappa |F'| at a large mu: a corner the steps must not straddle).
     double len = h;
     State next = law.rk4(y, len);
+    Law::At an = law.at(next);
     bool ends = false, onset = false, zero = false;
-    if (overlap(next) <= 0) {
-      len = root(y, len, overlap(y), overlap(next), overlap);
-      next = law.rk4(y, len);
+    if (an.x <= 0) {
+      len = root(y, len, ay.x, an.x, overlap);
+      next = law.rk4(y, len), an = law.at(next);
       ends = true;
     }
-    const double f0 = force(y), f1 = force(next);
+    const double f0 = ay.f, f1 = an.f;
     if (law.capped && f0 != 0 && (f0 > 0) != (f1 > 0)) {  // (mu infinite: no cap, not even at F = 0)
       len = root(y, len, f0, f1, force);
-      next = law.rk4(y, len);
+      next = law.rk4(y, len), an = law.at(next);
       ends = false, zero = true;
     }
-    const double e0 = excess(y), e1 = excess(next);
+    const double e0 = ay.trial - ay.cap, e1 = an.trial - an.cap;
     if (!sliding && e0 < 0 && e1 > 0) {
       const double at = root(y, len, e0, e1, excess);
       if (at > 1e-9 * h) {  // (else: at the step's start, the corner does no harm)
         len = at;
-        next = law.rk4(y, len);
+        next = law.rk4(y, len), an = law.at(next);
         ends = zero = false;
       }
       onset = true;
     }
-    y = next;
+    y = next, ay = an;
     t += len;
     // (en = 1: F = kn x, its zero is the end)
-    if (ends || overlap(y) <= 0) break;
-    const bool slides = law.reset(y, onset, zero);
+    if (ends || ay.x <= 0) break;
+    const bool slides = law.reset(y, ay, onset, zero);
+    if (slides) ay = law.at(y);  // (the reset moved the spring)
     if (slides && !sliding) ++out.slides;
     sliding = slides;
   }

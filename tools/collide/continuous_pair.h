@@ -55,7 +55,7 @@
 // extrapolation from N = 1e4 against the one from 4e4: at most 3.1e-9.  A
 // literal explicit-Euler return-mapping stepper of the same law, written
 // apart with Eigen (tests/collide/test_continuous_pair.cpp), agrees to its
-// own first-order error.  N = 1e4 takes about 13 ms per collision.
+// own first-order error.  N = 1e4 takes about 10 ms per collision.
 #pragma once
 
 #include <array>
