@@ -38,13 +38,14 @@ struct Run {
 };
 
 constexpr double kRadius = 1.5e-3;
+constexpr double kMass = 2500.0 * 4.0 / 3.0 * viscoelastic::kPi * kRadius * kRadius * kRadius;  // glass
 
 // nullopt: the step exceeds the applied law's stable step (the model refuses
 // it), or limitForce cannot restitute en.
 inline std::optional<Run> steppedPair(const Setup& c)
 {
     using namespace viscoelastic;
-    const double R = kRadius, m = 2500.0 * 4.0 / 3.0 * kPi * R * R * R, I = 0.4 * m * R * R, meff = 0.5 * m;
+    const double R = kRadius, m = kMass, I = 0.4 * m * R * R, meff = 0.5 * m;
     const auto o = exactCollisionOscillators(c.p, c.limitForce);
     if (!o) return std::nullopt;
     const double dt = c.p.tc / c.ratio;
