@@ -143,7 +143,7 @@ void printDistribution(const char* what, Take take, Of of)
 // incoming speed at tc/dt >= 10, 1 % coarser (the same as against its own
 // step at tc/1000 in tests/contact_models/test_collision_sweep.cpp, here
 // against the law itself).  Measured: at tc/dt >= 10 (1679 draws) at most
-// 2.27e-3, 5 above 1e-3; coarser (294) at most 2.67e-3, 14 above 1e-3.
+// 2.27e-3, 4 above 1e-3; coarser (294) at most 2.68e-3, 11 above 1e-3.
 TEST(PairAgainstContinuous, StepsFollowTheLawAndMeetTheTarget)
 {
     double worst = 0.0;
@@ -213,6 +213,46 @@ TEST(PairAgainstContinuous, ATwistOnASlidingPairTurnsItsForceAsTheLawDoes)
     EXPECT_LT(off[0], 3e-5);
     EXPECT_LT(off[1], 1e-5);
     EXPECT_LT(off[2], 0.5 * off[1]);
+}
+
+// A grazing pair that sticks: vt/vn 4.2 at 1.86 m/s, en 0.41, et 0.80, mu
+// 1e6 (the pull |vt|^2 / d a third of the force scale pi vn / tc, falling
+// 25-30 % a step at tc/5.3 as the spring slows vt). LIGGGHTS gives the pull
+// of the half step before a sample, |vt_{n-1/2}|^2 / d; the sample after the
+// step lands with the mean of it and the next step's, which exactCollisionStep
+// takes from the speed extrapolated over the step before. Taken as given, the
+// pull came half a step late: worst of these phases 1.2 %, 0.59 % and 0.30 % off
+// the law at tc/5.3, tc/7.3 and tc/10. Measured now 0.39 %, 0.16 % and
+// 0.069 %, second order (at tc/10 0.18 of that at tc/5.3; (5.3/10)^2 is 0.28). Tolerances: the target (1 % coarser than tc/10, 0.5 % there) halved,
+// and the step's order.
+TEST(PairAgainstContinuous, AGrazingPairIsPulledAsAtItsSamples)
+{
+    pairstepper::Setup c;
+    c.p = {1e-4, 0.4147, 0.7968, 1e6};
+    c.vn = 1.864, c.vt = 4.164 * c.vn;
+    const pairstepper::Run law = lawOf(c).run;
+    std::mt19937 g(5);
+    std::uniform_real_distribution<double> phases(0.0, 1.0);
+    std::vector<double> worst;
+    std::vector<double> drawn(16);
+    for (double& p : drawn) p = 1.0 - phases(g);
+    for (double ratio : {5.3, 7.3, 10.0}) {
+        c.ratio = ratio;
+        double w = 0.0;
+        for (double phase : drawn) {
+            c.phase = phase;
+            const auto run = pairstepper::steppedPair(c);
+            ASSERT_TRUE(run);
+            w = std::max(w, pairstepper::apart(*run, law, c));
+        }
+        worst.push_back(w);
+    }
+    std::printf("a grazing pair that sticks: worst of 16 phases off the law %.2e, %.2e, %.2e at tc/5.3, tc/7.3, tc/10\n",
+                worst[0], worst[1], worst[2]);
+    EXPECT_LT(worst[0], 0.005);
+    EXPECT_LT(worst[1], 0.005);
+    EXPECT_LT(worst[2], 0.0025);
+    EXPECT_LT(worst[2], 0.25 * worst[0]);
 }
 
 }  // namespace
