@@ -133,17 +133,17 @@ class TwoSpeedsAtOnce(unittest.TestCase):
 
     def test_a_list_of_the_wrong_length_stops_the_job(self):
         d = self.scratch("length")
-        status, _ = partitions(d, "21 42 63", "post/seed.restart post/seed.restart")
-        self.assertNotEqual(status, 0)
+        status, out = partitions(d, "21 42 63", "post/seed.restart post/seed.restart")
+        self.assertNotEqual(status, 0, out[-3000:])
         said = "".join((d / f"log.liggghts.{k}").read_text(errors="replace") for k in (0, 1))
-        self.assertIn("ERROR: World variable count doesn't match # of partitions", said)
+        self.assertIn("ERROR: World variable count doesn't match # of partitions", said, out[-3000:])
 
     def test_a_variable_set_per_partition_given_for_all_stops_the_job(self):
         d = self.scratch("given")
-        status, _ = partitions(d, "21 42", "post/seed.restart post/seed.restart", "-var", "rpm", "7")
-        self.assertNotEqual(status, 0)
+        status, out = partitions(d, "21 42", "post/seed.restart post/seed.restart", "-var", "rpm", "7")
+        self.assertNotEqual(status, 0, out[-3000:])
         said = "".join((d / f"log.liggghts.{k}").read_text(errors="replace") for k in (0, 1))
-        self.assertIn("ERROR: Cannot redefine variable as a different style", said)
+        self.assertIn("ERROR: Cannot redefine variable as a different style", said, out[-3000:])
 
 
 if __name__ == "__main__":
