@@ -46,9 +46,11 @@ struct StepLaw {
     // change over the last step) to go on: a next sample that close to the
     // surface may fall to or below zero in the leapfrog, and the end step
     // (its exit rate, its friction) would never run. Round-off does that at
-    // endMargin. Between two spheres the leapfrog lands the overlap with the
-    // pull after this step's kick, which the tangential force changes: off
-    // by dt^2 / 2 times that change, allowed twice (a grazing pair landed
+    // endMargin. Between two spheres the next sample lands with the next half
+    // step's pull, which the tangential force changes: the pull at this
+    // sample (exactCollisionStep's extrapolation) misses it by a fraction of
+    // that change; dt^2 / 2 times the change allowed twice (set when the
+    // pull was taken as given, half a step late; a grazing pair landed
     // 1.6e-9 m outside, the pull falling 650 m/s^2 a step: it left without
     // its exit rate, 3.1 % off at tc/6; a margin of dt^2 times the pull
     // itself ended a contact whose pull was 1.5 times its force 1.4 steps
@@ -294,8 +296,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
             // From touch to this sample the pull ran at pull + pullRate t (t
             // since touch): x_p = -(pull + pullRate t) / k + c pullRate / k^2
             // solves the forced law, so x - x_p is free; from this sample on
-            // the pull given holds (its change over the coming step is what
-            // the leapfrog's own landing makes up, as inside the contact).
+            // the pull given holds (over the next step exactCollisionStep
+            // takes the pull at its sample, as inside the contact).
             const double k = law.o.k, q = pullRate / k;
             const Motion forced = law.o.after({-law.o.c * q / k, q}, s);
             now = {now.x + forced.x - q * s + law.o.c * q / k, now.u + forced.u - q};

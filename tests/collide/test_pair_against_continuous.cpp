@@ -223,8 +223,11 @@ TEST(PairAgainstContinuous, ATwistOnASlidingPairTurnsItsForceAsTheLawDoes)
 // takes from the speed extrapolated over the step before. Taken as given, the
 // pull came half a step late: worst of these phases 1.2 %, 0.59 % and 0.30 % off
 // the law at tc/5.3, tc/7.3 and tc/10. Measured now 0.39 %, 0.16 % and
-// 0.069 %, second order (at tc/10 0.18 of that at tc/5.3; (5.3/10)^2 is 0.28). Tolerances: the target (1 % coarser than tc/10, 0.5 % there) halved,
-// and the step's order.
+// 0.069 %: both second order (at tc/10 0.18 of tc/5.3 now, 0.25 before;
+// (5.3/10)^2 is 0.28), the error's constant 2-4 times smaller (0.23-0.47 of
+// before over tc/5-tc/20). Tolerances: the target (1 % coarser than tc/10,
+// 0.5 % there) halved, which the half-step-late pull misses at each step,
+// and the step's order (which it keeps).
 TEST(PairAgainstContinuous, AGrazingPairIsPulledAsAtItsSamples)
 {
     pairstepper::Setup c;
