@@ -102,7 +102,7 @@ public:
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
-                                                    step, mu * step.meff, limit, advance);
+                                                    step, mu * step.meff, limit, advance, drive.feed);
         } else {
             state.normalForce = h[6];
             Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,

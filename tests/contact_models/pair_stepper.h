@@ -81,7 +81,7 @@ inline std::optional<Run> steppedPair(const Setup& c)
             });
             s.friction *= meff, s.meff = meff;
             const Vec3 ft = exactTangentialForce(spring, exact, n, drive.rate, drive.mass, tangential, normal, s,
-                                                 c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true);
+                                                 c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true, drive.feed);
             const Vec3 f = meff * s.force * n + ft;
             r.largestFt = std::max(r.largestFt, ft.norm()), r.peakFn = std::max(r.peakFn, std::fabs(meff * s.force));
             r.largestPull = std::max(r.largestPull, pull);
