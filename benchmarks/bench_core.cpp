@@ -120,7 +120,7 @@ void ContactExactCollision(benchmark::State& state)
             const SpringDrive drive =
                 springDrive(k.vt, k.n, k.overlap, k.meff, 2.0 * k.meff, r, arm, k.spinI, 2.0 * k.meff, r, arm, k.spinJ);
             const CollisionStep step =
-                exactPairStep(normal, tangential, collision, k.overlap, k.rate, k.vt.squaredNorm() * (1.0 / (2.0 * r)),
+                exactPairStep(normal, tangential, collision, k.overlap, k.rate, k.vt.squaredNorm() * (1.0 / (2.0 * r)), 2.0 * r,
                               [&] { return PairAtTouch{drive, k.vt, k.meff, 0.5, 1.0 / (2.0 * r)}; });
             const Vec3 ft = pourninExactTangentialForce(s, k.n, drive.rate, drive.mass, tangential, step,
                                                         frictionLimit(0.5, k.meff * step.friction), true);

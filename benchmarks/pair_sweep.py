@@ -111,8 +111,9 @@ def section(res, m, rows):
         "same touch;\nthe target is 0.5 % of the incoming speed at tc/dt >= 10 and 1 % coarser. "
         "The largest pull is the centrifugal\npull |vt|²/d at its largest over the contact (the fine step's) "
         "against the contact's force scale π vn / tc,\nboth per unit mass: where it stays small the normal turns little "
-        "over the last step,\nwhose kicks act along that step's normal and tangent plane while the pair leaves along "
-        "its exit's\n([the law](../docs/law.md#what-it-does-not-remove)).\n\n"
+        "over the last steps,\nwhose kicks act along their own sample's normal and tangent plane while the pair leaves "
+        "along its exit's\n(where the friction hardly changes vt up to the exit, the sample before the end lands on "
+        "the exit's line; [the law](../docs/law.md#what-it-does-not-remove)).\n\n"
         + harness.markdown(table, [(k, k, None) for k in table[0]])
         + f"\n{below}The worst against its target: {100 * worst['off']:.2f} % ({describe(worst)}).\n\n"
         + res.image("pair sweep", "pair_sweep.png") + "\n"

@@ -135,14 +135,14 @@ inline double pullRateSinceTouch(const StepLaw& tangential, const StepLaw& norma
 // PairAtTouch, called only then.
 template <class Pair>
 inline CollisionStep exactPairStep(const StepLaw& normal, const StepLaw& tangential, CollisionState& state, double x,
-                                   double v, double pull, Pair pair)
+                                   double v, double pull, double distance, Pair pair)
 {
     const CollisionState before = state;
-    const CollisionStep first = exactCollisionStep(normal, state, x, v, pull);
+    const CollisionStep first = exactCollisionStep(normal, state, x, v, pull, 0.0, distance);
     if (!(first.sinceStart > 0.0 && pull > 0.0)) return first;
     const double rate = pullRateSinceTouch(tangential, normal, first, pair());
     state = before;
-    return exactCollisionStep(normal, state, x, v, pull, rate);
+    return exactCollisionStep(normal, state, x, v, pull, rate, distance);
 }
 
 // `tangential pournin` under exactCollision: law.h's pourninTangentialForce
@@ -245,8 +245,10 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
 // law's force.
 inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, const Vec3& n, const Vec3& vt, double mt,
                                  const StepLaw& law, const StepLaw& normalLaw, const CollisionStep& normal,
-                                 double muMeff, double limit, bool advance, const Vec3& feed)
+                                 double muMeff, double limit, bool advance, const Vec3& feed,
+                                 Vec3* exitChange = nullptr)
 {
+    if (exitChange) *exitChange = Vec3::Zero();
     if (!normal.continuous || !followsItsForecast(normal, e)) {
         if (advance) e = {}, e.forecast = normal.forceNext, e.forecastPull = normal.pull;
         return pourninExactTangentialForce(s, n, vt, mt, law, normal, limit, advance);
@@ -289,9 +291,46 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
         if (turned && ee.sliding) ee.force = rotateWithNormal(ee.force, s.normal, n);
         a = cappedTangentialStep(ee, xi, vt, law, normalLaw, normal, kappa);
     }
+    if (exitChange && normal.exit.sigma > 0.0) {
+        // the contact point's rate at the continuous exit, less the one after this step
+        ExactTangentialState from = e;
+        if (turned && from.offPath) from.rateOffset = rotateWithNormal(from.rateOffset, s.normal, n);
+        if (turned && from.sliding) from.force = rotateWithNormal(from.force, s.normal, n);
+        const TangentialMotion at{xiSampled, from.offPath ? Vec3(vt + from.rateOffset)
+                                                          : Vec3(law.uX * xiSampled + law.uV * vt)};
+        const CapSource src{&normalLaw.o, normal.now, normal.pull, kappa};
+        const CappedFlow toExit = cappedFlow(law.o, at, src, 0.0, normal.exit.sigma, nullptr, from.sliding, from.force);
+        *exitChange = toExit.end.u - (vt + law.dt * a);
+    }
     ee.forecast = normal.forceNext, ee.forecastPull = normal.pull;
     if (advance) s.xi = xi, s.normal = n, e = ee;
     return mt * a;
+}
+
+// Where a pair's contact ends within the next step (normal.exit), the force
+// along n [N] to add to this step's so that its next sample lands on the
+// continuous exit line (landOnExitLine), and the collision's state for the
+// end step; 0 where it does not land. vt: the centres' relative tangential
+// velocity, ft this step's tangential force, exitChange what
+// exactTangentialForce forecast for the contact point up to the exit. Only
+// where the friction changes vt by at most kLandFriction of itself up to the
+// exit: the end step's tangential kick acts in its own sample's frame, and
+// where it is large the flight departs from the line by more than the
+// landing corrects (over 16,369 random grazing pairs without and as many
+// with spins, misses of the target 10 and 35 without landing, 5 and 29 at
+// 0.03, 8 and 33 at 0.01; landing every pair, the sticking ones' mean error
+// doubled).
+constexpr double kLandFriction = 0.03;
+inline double exitLineForce(const StepLaw& normalLaw, CollisionState& state, const CollisionStep& normal, const Vec3& vt,
+                            const Vec3& ft, double mt, const Vec3& exitChange)
+{
+    const ExitPlan& p = normal.exit;
+    if (!(p.sigma > 0.0) || vt.squaredNorm() == 0.0) return 0.0;
+    const Vec3 after = vt + normalLaw.dt / normal.meff * ft, exit = after + mt / normal.meff * exitChange;
+    if ((exit - vt).norm() > kLandFriction * vt.norm()) return 0.0;
+    const Vec3 along = vt.normalized();  // the plane of the motion: n and vt
+    const auto landed = landOnExitLine(normalLaw, state, p, vt.norm(), after.dot(along), exit.dot(along));
+    return landed ? normal.meff * (*landed - normal.force) : 0.0;
 }
 
 // The single collision as LIGGGHTS integrates it under exactCollision: the

@@ -56,6 +56,10 @@ struct StepLaw {
     // itself ended a contact whose pull was 1.5 times its force 1.4 steps
     // early, 8 % off). The common step tests endX - endMargin (endGoX).
     double endMargin = 0, endGoX = 0, endPullMargin = 0;
+    // What ends the contact two steps on (end2X x_n + end2V v_{n-1/2} +
+    // end2A pull): a pair whose contact ends within the next step lands its
+    // next sample on the continuous exit line (exactCollisionEnds).
+    double end2X = 0, end2V = 0, end2A = 0;
     // The force's rate one step on along a free motion m (of x + pull / k):
     // rateStepX m.x + rateStepU m.u.
     double rateStepX = 0, rateStepU = 0;
@@ -110,6 +114,10 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.endGoX = s.endX - s.endMargin;
     s.endPullMargin = forceEnds ? 0.0 : dt * dt;
+    const FreeOscillator::Flow twoSteps = s.o.flow(2.0 * dt);
+    s.end2X = s.o.ending(s.o.after({1.0, s.uX}, twoSteps), forceEnds);
+    s.end2V = s.o.ending(s.o.after({0.0, s.uV}, twoSteps), forceEnds);
+    s.end2A = (s.end2X - (forceEnds ? k : 1.0)) / k;
     s.rateStepX = s.o.forceRate(s.o.after({1.0, 0.0}, s.flowStep));
     s.rateStepU = s.o.forceRate(s.o.after({0.0, 1.0}, s.flowStep));
     s.inverseDt = 1.0 / dt;
@@ -122,7 +130,9 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
 // `held`: ended by the binary law but pressed on by other contacts (a
 // packing): the plain step law until the bodies part. `leaving`: ended, with
 // a second kick due (a pull that alone parts the bodies faster than the law).
-enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3, held = 4, leaving = 5 };
+// `landing`: a pair's sample placed on the continuous exit line (its end
+// step next).
+enum class CollisionPhase { fresh = 0, touching = 1, ended = 2, attractive = 3, held = 4, leaving = 5, landing = 6 };
 
 // What a contact keeps between steps.
 struct CollisionState {
@@ -136,6 +146,22 @@ struct CollisionState {
     // first step, the pull half a step before its sample (from the touch's and
     // its rate since).
     double previousPull = 0;
+};
+
+// A pair whose contact ends within the next step leaves on a straight line
+// from the continuous exit. The end step's kick acts along its own sample's
+// normal: it puts the flight on the exit's line only from a sample on that
+// line (from the sample on the continuous motion the flight came out turned
+// by the angle it swept to the surface less the one the contact swept: a
+// frictionless grazing pair 1.6 % off at tc/5.7). What landing the next
+// sample on the line takes, in the plane of the motion (this sample's normal
+// and the centres' tangential velocity): landOnExitLine.
+struct ExitPlan {
+    double sigma = -1;               // the continuous exit, after this sample [s] (< 0: no plan)
+    double distance = 0, dEnd = 0;   // the centres' distance at this sample and at the exit
+    double x = 0, v = 0, turn = 0;   // the overlap, rate and turn exactCollisionStep took
+    Motion now{0.0, 0.0};            // the continuous motion at this sample (of x + pull / k)
+    double pull = 0;
 };
 
 struct CollisionStep {
@@ -159,6 +185,7 @@ struct CollisionStep {
     double pull = 0, forceNow = 0, forceNext = 0;
     double forceScale = 0;  // the size of forceNow's terms, for comparing it with a forecast
     double meff = 1;  // the mass the caller scales these by (the cap is mu meff |Fn|)
+    ExitPlan exit;    // a pair's contact ending within the next step
 };
 
 // A contact first seen with overlap x1 and approach rate v0 touched x1 / v0
@@ -248,10 +275,20 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // common step, which they would otherwise crowd with their transcendental
 // evaluations.
 [[gnu::noinline]] inline CollisionStep exactCollisionEnds(const StepLaw& law, CollisionState& state, double x, double v,
-                                                          double pull, double pullRate, double pullChange, double turn)
+                                                          double pull, double pullRate, double pullChange, double turn,
+                                                          double distance)
 {
     const double dt = law.dt;
     CollisionStep r;
+    // the sample as it is (the kicks act on it); x and v below: the
+    // continuous motion's, which a landing sample left by previousOffset
+    const double xAt = x, vAt = v;
+    const bool landed = state.phase == CollisionPhase::landing;
+    if (landed) {
+        x -= state.previousOffset, v -= state.previousOffset * law.inverseDt;
+        state.previousOffset = 0.0;
+        state.phase = CollisionPhase::touching;
+    }
     if (state.phase == CollisionPhase::leaving) {
         // the end step's second kick (below): previousOffset holds the
         // parting rate squared
@@ -333,13 +370,27 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // goes on)
     double hi = dt, endHi = endAhead;
     bool goesOn = endAhead > law.endMargin * x + law.endPullMargin * pullChange;
-    if (!goesOn && endAhead > law.endMargin * x) {
+    if (landed || (!goesOn && endAhead > law.endMargin * x)) {  // (a landed sample ends here unless it is far)
         hi = 2.0 * dt, endHi = endingAndSlope(law.o.after(now, hi)).first;
         goesOn = endHi > 0.0;
     }
     if (goesOn) {  // on along the continuous motion: the next sample lies on it
-        r.force = (v - (ahead.x - shift - x) / dt) / dt - pull;
+        r.force = (vAt - (ahead.x - shift - xAt) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
+        // A pair whose contact ends within the next step: the plan of its
+        // landing on the exit line (landOnExitLine, which the caller runs
+        // with this step's friction). Not from a first step, whose state
+        // holds the start's offset for the next.
+        if (hi == dt && r.sinceStart < 0.0 && distance > 0.0 && pull > 0.0) {
+            const double end2 = endingAndSlope(law.o.after(now, 2.0 * dt)).first;
+            if (!(end2 > 0.0)) {
+                const double sigma = detail::bracketedNewton(
+                    [&](double t) { return endingAndSlope(law.o.after(now, t)); }, dt, 2.0 * dt, endAhead,
+                    dt + dt * endAhead / (endAhead - end2));
+                const double dEnd = distance + xAt - (law.o.after(now, sigma).x - shift);
+                r.exit = {sigma, distance, dEnd, xAt, vAt, turn, now, pull};
+            }
+        }
         return r;
     }
     // The contact ends within this step: leave at the continuous exit rate.
@@ -354,18 +405,18 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     const Motion end = law.o.after(now, tau);
     r.friction = frictionBetween(law, state, now, start, end, from, tau, pull);
     const double target = end.u * end.u + 2.0 * pull * (end.x - shift);
-    if (target < 2.0 * pull * x) {
+    if (target < 2.0 * pull * xAt) {
         // The pull alone parts the bodies from x faster than the law: no kick
         // here can give that rate. Land the next sample where it does,
         // target / (2 pull), and kick again there (phase `leaving`).
         const double x1 = target / (2.0 * pull);
-        const double up = (x - x1 - 0.5 * pull * dt * dt) / dt;  // separating rate after this kick
-        r.force = (v - turn + up) / dt;
+        const double up = (xAt - x1 - 0.5 * pull * dt * dt) / dt;  // separating rate after this kick
+        r.force = (vAt - turn + up) / dt;
         state.previousOffset = target;
         state.phase = CollisionPhase::leaving;
         return r;
     }
-    partingKick(law, state, x, v, pull, turn, target, r);
+    partingKick(law, state, xAt, vAt, pull, turn, target, r);
     return r;
 }
 
@@ -379,9 +430,11 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
 // earlier than the law alone; zero on a flat wall. `pullRate`: at a
 // contact's first step, how fast the pull changed between first touch and
 // this sample (the tangential force turns vt from the touch on; the pull is
-// that of the velocities before it: pullRateSinceTouch).
+// that of the velocities before it: pullRateSinceTouch). `distance`: the
+// centres' distance between two spheres (0 on a wall), for the plan of a
+// landing on the exit line (CollisionStep::exit).
 inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& state, double x, double v,
-                                        double pull = 0.0, double pullRate = 0.0)
+                                        double pull = 0.0, double pullRate = 0.0, double distance = 0.0)
 {
     // The rate LIGGGHTS gives is -(vi - vj).n with the normal of this step,
     // the velocities of the half step before: with a turning normal that is
@@ -402,17 +455,20 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     // whose friction slowed vt fast was pulled half a step late: 1.2 % off at
     // tc/5.3 (PairAgainstContinuous.AGrazingPairIsPulledAsAtItsSamples).
     const double given = pull;
-    if (underWay && (pull > 0.0 || state.previousPull > 0.0)) {
+    if ((underWay || state.phase == CollisionPhase::landing) && (pull > 0.0 || state.previousPull > 0.0)) {
         const double ahead = 2.0 * std::sqrt(pull) - std::sqrt(std::max(state.previousPull, 0.0));
         pull = 0.5 * (pull + ahead * ahead);
     }
     state.previousPull = given;
     // A contact under way that goes on past this step: the previous sample
     // and this one define the motion. It costs nine products (five more with a
-    // pull, and two square roots) and two comparisons over the plain law.
+    // pull, and two square roots) and two comparisons over the plain law;
+    // between two spheres three more and a comparison: the step before the
+    // end step (the end within two steps) goes out of line, to plan a landing.
     if (underWay) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
-        if (law.endGoX * x + law.endV * vUsed + law.endA * pull > law.endPullMargin * pullChange) {
+        if (law.endGoX * x + law.endV * vUsed + law.endA * pull > law.endPullMargin * pullChange &&
+            !(distance > 0.0 && pull > 0.0 && !(law.end2X * x + law.end2V * vUsed + law.end2A * pull > 0.0))) {
             state.previousOffset = 0.0;
             CollisionStep r;
             r.force = (v - vUsed) * law.inverseDt + law.kStep * x + law.cStep * vUsed + law.forceA * pull;
@@ -432,7 +488,54 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     }
     // a contact held in a packing: the plain step law (no call out of line)
     if (state.phase == CollisionPhase::held) return detail::heldStep(law, x, v);
-    return detail::exactCollisionEnds(law, state, x, v, pull, pullRate, pullChange, turn);
+    return detail::exactCollisionEnds(law, state, x, v, pull, pullRate, pullChange, turn, distance);
+}
+
+// The force (per unit mass, along this sample's normal) that lands the next
+// sample on the exit line of plan p (exactCollisionStep's, whose own force
+// lands it on the continuous motion), and the state the end step then takes
+// (the landed sample's offset from the continuous motion); nullopt where the
+// exit is not within the next step or that sample would not touch. vtBefore,
+// vtAfter: the centres' tangential speed before and after this step's kicks
+// (the friction's included), vtExit: at the continuous exit. The line's
+// angular momentum is dEnd vtExit; the end step's kick, along its sample's
+// normal, keeps the sample's plus what its friction adds.
+inline std::optional<double> landOnExitLine(const StepLaw& law, CollisionState& state, const ExitPlan& p,
+                                            double vtBefore, double vtAfter, double vtExit)
+{
+    const double dt = law.dt, d = p.distance, k = law.o.k, c = law.o.c;
+    // The plan took the pull as constant; the friction changes vt up to the
+    // exit, the pull with it: at its mean rate q k to the exit, x = y -
+    // (pull + q k t) / k + c q / k with y free (the exit moves: found again).
+    const double q = (vtExit * vtExit / p.dEnd - p.pull) / (p.sigma * k);
+    const Motion y{p.now.x - c * q / k, p.now.u + q};
+    const auto motion = [&](double t) {
+        const Motion m = law.o.after(y, t);
+        return Motion{m.x - (p.pull + q * k * t) / k + c * q / k, m.u - q};
+    };
+    const auto ending = [&](double t) {
+        const Motion m = motion(t);
+        return law.forceEnds ? std::make_pair(k * m.x + c * m.u, law.o.forceRate(law.o.after(y, t)) - q * k)
+                             : std::make_pair(m.x, m.u);
+    };
+    const double endStep = ending(dt).first, endTwo = ending(2.0 * dt).first;
+    if (!(endStep > 0.0 && endTwo <= 0.0)) return std::nullopt;
+    const double sigma = detail::bracketedNewton(ending, dt, 2.0 * dt, endStep, dt + dt * endStep / (endStep - endTwo));
+    const Motion end = motion(sigma), mid = motion(0.5 * sigma);
+    const double dEnd = d + p.x - end.x, dMid = d + p.x - mid.x, out = -end.u;
+    // the angle the normal turns to the exit (Simpson's rule on vt / d)
+    const double atSample = 0.5 * (vtBefore + vtAfter);
+    const double angle = sigma / 6.0 * (atSample / d + 2.0 * (atSample + vtExit) / dMid + vtExit / dEnd);
+    const double ca = std::cos(angle), sa = std::sin(angle);
+    const double wx = out * ca - vtExit * sa, wy = out * sa + vtExit * ca;  // the exit velocity, in this frame
+    if (!(wy > 0.0)) return std::nullopt;
+    // the next sample (d + dt vr, dt vtAfter) on the line: (d + dt vr) wy - dt vtAfter wx = dEnd vtExit
+    const double vr = ((dEnd * vtExit + dt * vtAfter * wx) / wy - d) / dt;
+    const double xLanded = d + p.x - std::hypot(d + dt * vr, dt * vtAfter);
+    if (!(xLanded > 0.0)) return std::nullopt;
+    state.previousOffset = xLanded - motion(dt).x;
+    state.phase = CollisionPhase::landing;
+    return (p.v - p.turn + vr) / dt;
 }
 
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)

@@ -156,7 +156,9 @@ private:
             pull = std::max(vr2 - sidata.vn * sidata.vn, 0.0) * sidata.rinv;
         }
         const TypePairTable::CollisionLaws& laws = table.collision(sidata.itype, sidata.jtype);
-        const CollisionStep step = exactPairStep(laws.normal, laws.tangential, state, sidata.deltan, -sidata.vn, pull, [&] {
+        const double distance = sidata.is_wall ? 0.0 : 1.0 / sidata.rinv;
+        const CollisionStep step = exactPairStep(laws.normal, laws.tangential, state, sidata.deltan, -sidata.vn, pull,
+                                                 distance, [&] {
             const Vec3 n(sidata.en[0], sidata.en[1], sidata.en[2]);
             const Vec3 vr(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
             return PairAtTouch{contactSpringDrive(sidata, n, Vec3(sidata.vtr1, sidata.vtr2, sidata.vtr3)),
@@ -167,7 +169,7 @@ private:
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]
         forTangential.meff = meff;
-        table.setCollisionStep(forTangential);
+        table.setCollisionStep(forTangential, h);
         return meff * step.force;
     }
 

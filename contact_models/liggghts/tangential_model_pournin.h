@@ -88,6 +88,7 @@ public:
         const double mu = coeffFrict[sidata.itype][sidata.jtype];
         const double limit = viscoelastic::frictionLimit(mu, exact ? t->collisionStep().friction : sidata.Fn);
         Vec3 Ft;
+        double landing = 0.0;  // along the normal, where a pair lands on its exit line
         // h[6], the unclipped normal force of the step before, serves the
         // nominal spring only
         viscoelastic::ExactTangentialState e;
@@ -101,8 +102,18 @@ public:
             if (e.sliding) e.force = Vec3(r[4], r[5], r[6]);
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
             const viscoelastic::CollisionStep& step = t->collisionStep();
+            Vec3 exitChange;
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
-                                                    step, mu * step.meff, limit, advance, drive.feed);
+                                                    step, mu * step.meff, limit, advance, drive.feed, &exitChange);
+            if (step.exit.sigma > 0.0) {  // a pair ending within the next step: land on the exit line
+                double* const c = t->collisionHistory();
+                viscoelastic::CollisionState collision{static_cast<viscoelastic::CollisionPhase>(static_cast<int>(c[0])),
+                                                       c[1], c[2]};
+                const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
+                landing = viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
+                                                      drive.mass, exitChange);
+                if (advance) c[0] = static_cast<double>(collision.phase), c[1] = collision.previousOffset;
+            }
         } else {
             state.normalForce = h[6];
             Ft = viscoelastic::pourninTangentialForce(state, normal, vt, sidata.kt, sidata.gammat, limit, update->dt,
@@ -130,10 +141,10 @@ public:
         const Vec3 nxF = normal.cross(Ft);
         const double scale = sidata.is_wall ? sidata.area_ratio : 1.0;
         for (int d = 0; d < 3; ++d) {
-            i_forces.delta_F[d] += scale * Ft[d];
+            i_forces.delta_F[d] += scale * Ft[d] + landing * normal[d];
             i_forces.delta_torque[d] -= scale * sidata.cri * nxF[d];
             if (!sidata.is_wall) {
-                j_forces.delta_F[d] -= Ft[d];
+                j_forces.delta_F[d] -= Ft[d] + landing * normal[d];
                 j_forces.delta_torque[d] -= sidata.crj * nxF[d];
             }
         }

@@ -57,8 +57,13 @@ public:
     // What the normal step of the contact in hand decided, for `tangential
     // pournin`: LIGGGHTS calls the normal and then the tangential model of
     // one contact back to back, so it needs no place in the contact history.
-    void setCollisionStep(const CollisionStep& s) const { step_ = s; }
+    // With it, where the step plans a landing on the exit line (a pair whose
+    // contact ends within the next step), the normal model's history of the
+    // contact (phase, previousOffset, previousPull), which the tangential
+    // model's landing writes (exitLineForce needs this step's friction).
+    void setCollisionStep(const CollisionStep& s, double* history) const { step_ = s, history_ = history; }
     const CollisionStep& collisionStep() const { return step_; }
+    double* collisionHistory() const { return history_; }
 
 private:
     void say(const std::string& report, const std::vector<std::string>& warnings);
@@ -69,6 +74,7 @@ private:
     std::vector<CollisionLaws> collision_;
     const void* owner_ = nullptr;
     mutable CollisionStep step_;
+    mutable double* history_ = nullptr;
 
     // What this table printed at its last load, so the report appears once
     // per LAMMPS instance (see say()).

@@ -76,13 +76,15 @@ inline std::optional<Run> steppedPair(const Setup& c)
             const Vec3 vtr = vt - (cr * (wi + wj)).cross(n);
             const double pull = std::max(v.squaredNorm() - v.dot(n) * v.dot(n), 0.0) / d.norm();
             const SpringDrive drive = springDrive(vtr, n, overlap, meff, m, R, cr, wi, m, R, cr, wj);
-            CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, [&] {
+            CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), [&] {
                 return PairAtTouch{drive, vt, meff, c.p.mu, 1.0 / d.norm()};
             });
             s.friction *= meff, s.meff = meff;
+            Vec3 exitChange;
             const Vec3 ft = exactTangentialForce(spring, exact, n, drive.rate, drive.mass, tangential, normal, s,
-                                                 c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true, drive.feed);
-            const Vec3 f = meff * s.force * n + ft;
+                                                 c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true, drive.feed,
+                                                 &exitChange);
+            const Vec3 f = (meff * s.force + exitLineForce(normal, state, s, vt, ft, drive.mass, exitChange)) * n + ft;
             r.largestFt = std::max(r.largestFt, ft.norm()), r.peakFn = std::max(r.peakFn, std::fabs(meff * s.force));
             r.largestPull = std::max(r.largestPull, pull);
             vi += dt * f / m, vj -= dt * f / m;
