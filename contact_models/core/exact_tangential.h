@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "capped_flow.h"
 #include "free_flow.h"
@@ -248,7 +249,8 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
                                  double muMeff, double limit, bool advance, const Vec3& feed,
                                  Vec3* exitChange = nullptr)
 {
-    if (exitChange) *exitChange = Vec3::Zero();
+    // (no forecast unless the contact follows the continuous motion: no landing then)
+    if (exitChange) *exitChange = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     if (!normal.continuous || !followsItsForecast(normal, e)) {
         if (advance) e = {}, e.forecast = normal.forceNext, e.forecastPull = normal.pull;
         return pourninExactTangentialForce(s, n, vt, mt, law, normal, limit, advance);
@@ -325,7 +327,7 @@ inline double exitLineForce(const StepLaw& normalLaw, CollisionState& state, con
                             const Vec3& ft, double mt, const Vec3& exitChange)
 {
     const ExitPlan& p = normal.exit;
-    if (!(p.sigma > 0.0) || vt.squaredNorm() == 0.0) return 0.0;
+    if (!(p.sigma > 0.0) || vt.squaredNorm() == 0.0 || !exitChange.allFinite()) return 0.0;
     const Vec3 after = vt + normalLaw.dt / normal.meff * ft, exit = after + mt / normal.meff * exitChange;
     if ((exit - vt).norm() > kLandFriction * vt.norm()) return 0.0;
     const Vec3 along = vt.normalized();  // the plane of the motion: n and vt

@@ -370,8 +370,10 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     // goes on)
     double hi = dt, endHi = endAhead;
     bool goesOn = endAhead > law.endMargin * x + law.endPullMargin * pullChange;
-    if (landed || (!goesOn && endAhead > law.endMargin * x)) {  // (a landed sample ends here unless it is far)
-        hi = 2.0 * dt, endHi = endingAndSlope(law.o.after(now, hi)).first;
+    if (landed || (!goesOn && endAhead > law.endMargin * x)) {
+        // (a landed sample ends here unless its end moved on by more than a
+        // quarter step: pushed by other contacts it goes on)
+        hi = (landed ? 1.25 : 2.0) * dt, endHi = endingAndSlope(law.o.after(now, hi)).first;
         goesOn = endHi > 0.0;
     }
     if (goesOn) {  // on along the continuous motion: the next sample lies on it
