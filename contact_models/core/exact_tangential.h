@@ -209,6 +209,23 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
                                            1e-3 * normal.forceScale + 0.5 * std::max(normal.pull, e.forecastPull);
 }
 
+// The spring's motion at this sample, of a contact under way: its spring xi
+// and the rate the samples give, or, off the path, the drive's rate and the
+// offset the state keeps.
+inline TangentialMotion sampledMotion(const StepLaw& law, const ExactTangentialState& e, const Vec3& xi, const Vec3& w)
+{
+    return {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
+}
+
+// The state's vectors carried onto this step's tangent plane, where the
+// normal turned from `from` to n.
+inline ExactTangentialState turnedWith(ExactTangentialState e, const Vec3& from, const Vec3& n)
+{
+    if (e.offPath) e.rateOffset = rotateWithNormal(e.rateOffset, from, n);
+    if (e.sliding) e.force = rotateWithNormal(e.force, from, n);
+    return e;
+}
+
 [[gnu::noinline]] inline Vec3 cappedTangentialStep(ExactTangentialState& e, Vec3& xi, const Vec3& w, const StepLaw& law,
                                                    const StepLaw& normalLaw, const CollisionStep& normal, double kappa)
 {
@@ -221,7 +238,7 @@ inline bool followsItsForecast(const CollisionStep& normal, const ExactTangentia
         at = before.end, stuck = before.stuck, e.sliding = before.sliding;
         e.force = law.o.k * at.xi + law.o.c * at.u;
     } else {
-        at = {xi, e.offPath ? Vec3(w + e.rateOffset) : Vec3(law.uX * xi + law.uV * w)};
+        at = sampledMotion(law, e, xi, w);
     }
     // (a slide goes on on the cap unless the cap jumped: cappedFlow)
     if (normal.endsAfter >= 0.0) {  // leave at the continuous rate at the end
@@ -289,19 +306,15 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
     ExactTangentialState ee = e;
     if (!common) {
         xi = xiSampled;
-        if (turned && ee.offPath) ee.rateOffset = rotateWithNormal(ee.rateOffset, s.normal, n);
-        if (turned && ee.sliding) ee.force = rotateWithNormal(ee.force, s.normal, n);
+        if (turned) ee = turnedWith(e, s.normal, n);
         a = cappedTangentialStep(ee, xi, vt, law, normalLaw, normal, kappa);
     }
     if (exitChange && normal.exit.sigma > 0.0) {
         // the contact point's rate at the continuous exit, less the one after this step
-        ExactTangentialState from = e;
-        if (turned && from.offPath) from.rateOffset = rotateWithNormal(from.rateOffset, s.normal, n);
-        if (turned && from.sliding) from.force = rotateWithNormal(from.force, s.normal, n);
-        const TangentialMotion at{xiSampled, from.offPath ? Vec3(vt + from.rateOffset)
-                                                          : Vec3(law.uX * xiSampled + law.uV * vt)};
+        const ExactTangentialState from = turned ? turnedWith(e, s.normal, n) : e;
         const CapSource src{&normalLaw.o, normal.now, normal.pull, kappa};
-        const CappedFlow toExit = cappedFlow(law.o, at, src, 0.0, normal.exit.sigma, nullptr, from.sliding, from.force);
+        const CappedFlow toExit = cappedFlow(law.o, sampledMotion(law, from, xiSampled, vt), src, 0.0,
+                                             normal.exit.sigma, nullptr, from.sliding, from.force);
         *exitChange = toExit.end.u - (vt + law.dt * a);
     }
     ee.forecast = normal.forceNext, ee.forecastPull = normal.pull;

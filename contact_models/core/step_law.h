@@ -64,9 +64,9 @@ struct StepLaw {
     // rateStepX m.x + rateStepU m.u.
     double rateStepX = 0, rateStepU = 0;
     double inverseDt = 0;
-    // The flows over -dt/2, dt/2 and dt: a contact's start and end take the
+    // The flows over -dt/2, dt/2, dt and 2 dt: a contact's start and end take the
     // motion there without a transcendental evaluation.
-    FreeOscillator::Flow flowBack{}, flowHalf{}, flowStep{};
+    FreeOscillator::Flow flowBack{}, flowHalf{}, flowStep{}, flowTwoSteps{};
     // An ended contact whose overlap would take longer than this to close at
     // its rate is held by other contacts (set by stepLaw from binary
     // collisions at 65 start phases: 1.5 times the longest they take, and at
@@ -94,7 +94,7 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.uX = -s.o.lambda + s.o.omega * (co - e) / si;
     s.uV = s.o.omega * e * dt / si;
     const double h = 0.5 * dt;
-    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt);
+    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt), s.flowTwoSteps = s.o.flow(2.0 * dt);
     // One step on, by linearity: the motion from (1, uX) and from (0, uV).
     const Motion fromX = s.o.after({1.0, s.uX}, s.flowStep), fromV = s.o.after({0.0, s.uV}, s.flowStep);
     s.endX = s.o.ending(fromX, forceEnds);
@@ -114,9 +114,8 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.endMargin = 1e-9 * (forceEnds ? k : 1.0);
     s.endGoX = s.endX - s.endMargin;
     s.endPullMargin = forceEnds ? 0.0 : dt * dt;
-    const FreeOscillator::Flow twoSteps = s.o.flow(2.0 * dt);
-    s.end2X = s.o.ending(s.o.after({1.0, s.uX}, twoSteps), forceEnds);
-    s.end2V = s.o.ending(s.o.after({0.0, s.uV}, twoSteps), forceEnds);
+    s.end2X = s.o.ending(s.o.after({1.0, s.uX}, s.flowTwoSteps), forceEnds);
+    s.end2V = s.o.ending(s.o.after({0.0, s.uV}, s.flowTwoSteps), forceEnds);
     s.end2A = (s.end2X - (forceEnds ? k : 1.0)) / k;
     s.rateStepX = s.o.forceRate(s.o.after({1.0, 0.0}, s.flowStep));
     s.rateStepU = s.o.forceRate(s.o.after({0.0, 1.0}, s.flowStep));
@@ -384,7 +383,7 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
         // with this step's friction). Not from a first step, whose state
         // holds the start's offset for the next.
         if (hi == dt && r.sinceStart < 0.0 && distance > 0.0 && pull > 0.0) {
-            const double end2 = endingAndSlope(law.o.after(now, 2.0 * dt)).first;
+            const double end2 = endingAndSlope(law.o.after(now, law.flowTwoSteps)).first;
             if (!(end2 > 0.0)) {
                 const double sigma = detail::bracketedNewton(
                     [&](double t) { return endingAndSlope(law.o.after(now, t)); }, dt, 2.0 * dt, endAhead,

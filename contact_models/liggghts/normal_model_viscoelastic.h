@@ -146,7 +146,7 @@ private:
     {
         using namespace viscoelastic;
         double* const h = &sidata.contact_history[history_offset];
-        CollisionState state{static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1], h[2]};
+        CollisionState state = loadCollisionState(h);
         // Between two spheres their relative tangential motion pulls the
         // centres apart at |vt|^2 / d; a flat wall's normal does not turn.
         double pull = 0.0;
@@ -164,8 +164,7 @@ private:
             return PairAtTouch{contactSpringDrive(sidata, n, Vec3(sidata.vtr1, sidata.vtr2, sidata.vtr3)),
                                vr - sidata.vn * n, meff, laws.mu, sidata.rinv};
         });
-        if (sidata.computeflag && sidata.shearupdate)
-            h[0] = static_cast<double>(state.phase), h[1] = state.previousOffset, h[2] = state.previousPull;
+        if (sidata.computeflag && sidata.shearupdate) storeCollisionState(h, state);
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]
         forTangential.meff = meff;

@@ -107,12 +107,11 @@ public:
                                                     step, mu * step.meff, limit, advance, drive.feed, &exitChange);
             if (step.exit.sigma > 0.0) {  // a pair ending within the next step: land on the exit line
                 double* const c = t->collisionHistory();
-                viscoelastic::CollisionState collision{static_cast<viscoelastic::CollisionPhase>(static_cast<int>(c[0])),
-                                                       c[1], c[2]};
+                viscoelastic::CollisionState collision = viscoelastic::loadCollisionState(c);
                 const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
                 landing = viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
                                                       drive.mass, exitChange);
-                if (advance) c[0] = static_cast<double>(collision.phase), c[1] = collision.previousOffset;
+                if (advance) viscoelastic::storeCollisionState(c, collision);
             }
         } else {
             state.normalForce = h[6];

@@ -15,6 +15,18 @@ class PropertyRegistry;
 
 namespace viscoelastic {
 
+// A contact's CollisionState as the normal model keeps it in the contact
+// history (phase, previousOffset, previousPull); the tangential model's
+// landing on the exit line writes it too.
+inline CollisionState loadCollisionState(const double* h)
+{
+    return {static_cast<CollisionPhase>(static_cast<int>(h[0])), h[1], h[2]};
+}
+inline void storeCollisionState(double* h, const CollisionState& s)
+{
+    h[0] = static_cast<double>(s.phase), h[1] = s.previousOffset, h[2] = s.previousPull;
+}
+
 class TypePairTable {
 public:
     TypePairTable();
