@@ -96,10 +96,11 @@ inline SpringDrive springDrive(const Vec3& vtr, const Vec3& n, double overlap, d
                                double cri, const Vec3& wi, double mj, double rj, double crj, const Vec3& wj)
 {
     if (!(mj > 0.0)) return {vtr - ((ri - cri) * wi).cross(n), rigidArmMass(meff, mi, ri, cri, 0.0, 0.0, 0.0)};
-    const double s = 1.0 - overlap / (ri + rj);
-    const Vec3 turning = (vtr + combine(cri, wi, crj, wj).cross(n)) / (ri + rj - overlap);  // n' = vt / d
-    return {s * vtr - combine(ri - s * cri, wi, rj - s * crj, wj).cross(n), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s),
-            -combine(ri, wi, rj, wj).cross(turning)};
+    // vt = vtr + (cri wi + crj wj) x n, the centres' relative tangential
+    // velocity, once: U = s vt - a x n and the feed -a x n' with n' = vt / d
+    const double d = ri + rj - overlap, s = d / (ri + rj);
+    const Vec3 a = combine(ri, wi, rj, wj), vt = vtr + combine(cri, wi, crj, wj).cross(n);
+    return {combine(s, vt, -1.0, a.cross(n)), rigidArmMass(meff, mi, ri, cri, mj, rj, crj, s), vt.cross(a) * (1.0 / d)};
 }
 
 // A contact's normal step between two spheres needs, at its first step only,
