@@ -10,7 +10,7 @@ sections (each is also a script of its own: benchmarks/<section>.py --help; time
   multicontact  the dense column with exactRestitution, ~10 min
   collision     single collisions against dt/tc: nominal, exactRestitution, exactCollision; its cost, ~3 min
   friction_sweep  exactCollision's friction on 20,000 random wall collisions against the law, ~6 min
-  pair_sweep    exactCollision between two spheres: 4 sets x 2 seeds x 10,000 random draws against tc/1000, ~3 min
+  pair_sweep    exactCollision between two spheres: 5 sets x 2 seeds x 10,000 random draws against tc/1000, ~4 min
   exact_modes   one wall collision with friction per mode against dt/tc, mu 0.5, 5, 1e6, ~3 min
   stability     dt/tc swept past failure: binary collision, dense column, drum (same slab), ~40 min
   stability_exact  the dense column under exactRestitution's and exactCollision's coefficients, ~1 h
