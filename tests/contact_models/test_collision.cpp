@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "core/collision.h"
 #include "core/discrete.h"
@@ -31,6 +32,36 @@ std::vector<double> randomPhases(int n, unsigned seed)
     std::vector<double> p;
     for (int i = 0; i < n; ++i) p.push_back(1.0 - u(g));  // (0, 1]
     return p;
+}
+
+// The sweep's target (benchmarks/pair_sweep.py): 0.5 % of the incoming speed
+// at tc/dt >= 10, 1 % coarser.
+double sweepTarget(double ratio) { return ratio >= 10.0 ? 0.005 : 0.01; }
+
+// The worst of n evenly spread start phases of c at tc/dt = ratio against
+// tc/1000, and the phase where it is.
+std::pair<double, double> worstOfPhases(pairstepper::Setup c, double ratio, int n)
+{
+    double worst = 0.0, at = 0.0;
+    c.ratio = ratio;
+    for (int k = 0; k < n; ++k) {
+        c.phase = (k + 0.5) / n;
+        const auto off = pairstepper::offTheFineStep(c);
+        EXPECT_TRUE(off) << "tc/dt " << ratio << " refused";
+        if (off && *off > worst) worst = *off, at = c.phase;
+    }
+    return {worst, at};
+}
+
+// A pair spinning at 1,800 and 3,200 rad/s, limitForce off, mu 3e4 (sticking),
+// whose normal force crosses zero near a sample.
+pairstepper::Setup capZeroPair()
+{
+    pairstepper::Setup c;
+    c.p = {kTc, 0.2097, 0.5817, 3.07e4};
+    c.vn = 1.294, c.vt = 1.243;
+    c.spinI = Vec3(-49.9, 1110.2, 1391.8), c.spinJ = Vec3(579.7, 1228.6, -2886.2);
+    return c;
 }
 
 }  // namespace
@@ -631,20 +662,9 @@ TEST(ExactCollision, ASlidingForceTurnsTowardItsLoadingRateFromAnyAngle)
 // incoming speed at tc/dt >= 10, 1 % coarser (benchmarks/pair_sweep.py).
 TEST(ExactCollision, ASpringLetsGoWhereTheCapPassesZeroBetweenTwoSteps)
 {
-    pairstepper::Setup c;
-    c.p = {kTc, 0.2097, 0.5817, 3.07e4};
-    c.vn = 1.294, c.vt = 1.243;
-    c.spinI = Vec3(-49.9, 1110.2, 1391.8), c.spinJ = Vec3(579.7, 1228.6, -2886.2);
     for (const double ratio : {7.0, 10.0, 14.0}) {
-        double worst = 0.0, at = 0.0;
-        c.ratio = ratio;
-        for (int k = 0; k < 256; ++k) {
-            c.phase = (k + 0.5) / 256.0;
-            const auto off = pairstepper::offTheFineStep(c);
-            ASSERT_TRUE(off) << "tc/dt " << ratio;
-            if (*off > worst) worst = *off, at = c.phase;
-        }
-        EXPECT_LT(worst, ratio >= 10.0 ? 0.005 : 0.01) << "tc/dt " << ratio << ", phase " << at;
+        const auto [worst, at] = worstOfPhases(capZeroPair(), ratio, 256);
+        EXPECT_LT(worst, sweepTarget(ratio)) << "tc/dt " << ratio << ", phase " << at;
         std::printf("tc/dt %g: worst of 256 phases %.3f %% (phase %.4f)\n", ratio, 100.0 * worst, at);
     }
 }
@@ -664,15 +684,8 @@ TEST(ExactCollision, APairWhosePullFallsFastFollowsItsForecast)
     c.vn = 1.195, c.vt = 1.466;
     c.spinI = Vec3(1110.0, -2246.0, 3976.0), c.spinJ = Vec3(1479.0, 1467.0, 1386.0);
     for (const double ratio : {5.0, 7.3, 10.0}) {
-        double worst = 0.0;
-        c.ratio = ratio;
-        for (int k = 0; k < 64; ++k) {
-            c.phase = (k + 0.5) / 64.0;
-            const auto off = pairstepper::offTheFineStep(c);
-            ASSERT_TRUE(off) << "tc/dt " << ratio;
-            worst = std::max(worst, *off);
-        }
-        EXPECT_LT(worst, ratio >= 10.0 ? 0.005 : 0.01) << "tc/dt " << ratio;
+        const double worst = worstOfPhases(c, ratio, 64).first;
+        EXPECT_LT(worst, sweepTarget(ratio)) << "tc/dt " << ratio;
         std::printf("tc/dt %g: worst of 64 phases %.3f %%\n", ratio, 100.0 * worst);
     }
 }
@@ -686,10 +699,7 @@ TEST(ExactCollision, APairWhosePullFallsFastFollowsItsForecast)
 // let go there. Target: the sweep's.
 TEST(ExactCollision, ASlidingSpringLetsGoWhereTheCapPassesZeroBetweenTwoSteps)
 {
-    pairstepper::Setup a;
-    a.p = {kTc, 0.2097, 0.5817, 3.07e4};
-    a.vn = 1.294, a.vt = 1.243;
-    a.spinI = Vec3(-49.9, 1110.2, 1391.8), a.spinJ = Vec3(579.7, 1228.6, -2886.2);
+    const pairstepper::Setup a = capZeroPair();
     pairstepper::Setup b;
     b.p = {kTc, 0.1255, 0.5512, 2687.4};
     b.vn = 0.8563, b.vt = 0.4093;
@@ -703,7 +713,7 @@ TEST(ExactCollision, ASlidingSpringLetsGoWhereTheCapPassesZeroBetweenTwoSteps)
         at.c.ratio = at.ratio, at.c.phase = at.phase;
         const auto off = pairstepper::offTheFineStep(at.c);
         ASSERT_TRUE(off);
-        EXPECT_LT(*off, at.ratio >= 10.0 ? 0.005 : 0.01) << "en " << at.c.p.en << " tc/dt " << at.ratio << " phase " << at.phase;
+        EXPECT_LT(*off, sweepTarget(at.ratio)) << "en " << at.c.p.en << " tc/dt " << at.ratio << " phase " << at.phase;
         std::printf("en %.4f, tc/dt %g, phase %.7f: %.3f %% off\n", at.c.p.en, at.ratio, at.phase, 100.0 * *off);
     }
 }
