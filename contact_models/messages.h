@@ -28,10 +28,29 @@ inline std::string format(const char* fmt, ...)
     return s;
 }
 
+// Under wallMassAsParticle (halvedMassCoefficients) what the solve was for:
+// YADE's halved law of the request, which the texts below then speak of.
+inline std::string halvedLawText(const ExactSolution& s)
+{
+    if (!s.halvedFrom) return "";
+    const ContactParameters& a = *s.halvedFrom;
+    return format("wallMassAsParticle on: the wall contact's law is YADE's, Pournin's coefficients of tc %g s, en %g, "
+                  "et %g (tc/dt %.2f) at meff/2, which restitutes en %.6g, et %.6g over %.6g s; ",
+                  a.tc, a.en, a.et, a.tc / s.dt, s.requested.en, s.tangentialTarget, s.requested.tc);
+}
+
 // Why exactUnitCoefficients found no coefficients; empty when it did.
 inline std::string failureText(const ExactSolution& s)
 {
     const ContactParameters& p = s.requested;
+    if (s.halvedFrom && s.failure == ExactFailure::tangentialUnreachable && !(s.tangentialTarget > 0.0))
+        return halvedLawText(s) + "a sticking contact point does not even reverse under it, so no tangential "
+                                  "coefficients restitute it: set exactRestitution off, or raise en";
+    if (s.failure != ExactFailure::none && s.halvedFrom) {
+        ExactSolution plain = s;
+        plain.halvedFrom.reset();
+        return halvedLawText(s) + failureText(plain);
+    }
     switch (s.failure) {
     case ExactFailure::none:
         return "";
@@ -55,6 +74,11 @@ inline std::string warningText(const ExactSolution& s)
 {
     const ContactParameters& p = s.requested;
     std::string w;
+    if (s.halvedFrom && (s.undampedRestitution || s.undampedTangentialRestitution)) {
+        ExactSolution plain = s;
+        plain.halvedFrom.reset();
+        return halvedLawText(s) + warningText(plain);
+    }
     if (s.undampedRestitution)
         w = format("en %g at dt %g s (tc/dt %.2f) would need a negative normal dashpot (the undamped discrete "
                    "contact restitutes %.6f): the dashpot is off",
@@ -72,6 +96,12 @@ inline std::string warningText(const ExactSolution& s)
 inline std::string contradictionText(const ExactSolution& s, double tolerance)
 {
     const ContactParameters& p = s.requested;
+    if (s.halvedFrom) {
+        ExactSolution plain = s;
+        plain.halvedFrom.reset();
+        const std::string c = contradictionText(plain, tolerance);
+        return c.empty() ? c : halvedLawText(s) + c;
+    }
     const auto far = [&](double achieved, double wanted) {
         return !(achieved > 0.0) || std::fabs(achieved / wanted - 1.0) > tolerance;
     };

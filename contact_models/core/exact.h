@@ -42,6 +42,8 @@ struct ExactSolution {
 
     // The request, so the result can be described on its own.
     ContactParameters requested{};
+    // halvedMassCoefficients: the user's request, whose halved law `requested` is.
+    std::optional<ContactParameters> halvedFrom;
     double dt = 0;
     bool limitForce = false;
 
@@ -137,8 +139,10 @@ inline double letGoRestitution(const ContactParameters& p)
 // `start`: how the tangential model in use begins its spring (discrete.h);
 // `pournin` (atTouch) also restarts it at the cap's zero, so without
 // limitForce the tangential target is the law's letGoRestitution, not et.
+// A `tangentialTarget` replaces that target (halvedMassCoefficients).
 inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt, bool limitForce,
-                                           SpringStart start = SpringStart::wholeStep)
+                                           SpringStart start = SpringStart::wholeStep,
+                                           std::optional<double> tangentialTarget = std::nullopt)
 {
     ExactSolution s;
     s.requested = p, s.dt = dt, s.limitForce = limitForce;
@@ -180,7 +184,9 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
         v.ct = mt * c;
         return v;
     };
-    const double target = start == SpringStart::atTouch && !limitForce ? letGoRestitution(p) : p.et;
+    const double target = tangentialTarget                                ? *tangentialTarget
+                          : start == SpringStart::atTouch && !limitForce ? letGoRestitution(p)
+                                                                         : p.et;
     s.tangentialTarget = target;
     auto et = [&](double c) {
         return phaseAveragedCollision(tangential(c), dt, limitForce, start).tangentialRestitution;
@@ -200,6 +206,59 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
     }
     s.unit = tangential(0.5 * (lo + hi));
     s.achieved = phaseAveragedCollision(s.unit, dt, limitForce, start);
+    return s;
+}
+
+// YADE 1.12's facet mass (`wallMassAsParticle on`, walls only): a wall
+// contact takes the bead's own mass as the wall's, meff/2, so per unit of its
+// true meff the law's coefficients are Pournin's halved. That law is softer
+// and less damped than the requested one: its collision lasts about sqrt(2)
+// tc and restitutes more than en and et (Table 3.1's bead-drum pair, en = et
+// 0.46: 0.582 over 1.39 tc). What it does, in closed form: the normal
+// oscillator's collision (with limitForce cut where the force ends), and
+// the tangential spring from (0, 1) while the force lasts; `pournin`
+// without limitForce lets go of it at the force's zero (letGoRestitution).
+// These are the limit dt -> 0 of the discrete collision (discrete.h).
+inline DiscreteCollision halvedMassLaw(const ContactParameters& p, bool limitForce, SpringStart start)
+{
+    UnitCoefficients u = pourninUnitCoefficients(p);
+    const FreeOscillator normal(0.5 * u.kn, 0.5 * u.cn);
+    const FreeOscillator spring(0.5 * u.kt / kTangentialMassRatio, 0.5 * u.ct / kTangentialMassRatio);
+    const ContinuousCollision n = continuousCollision(normal, limitForce);
+    DiscreteCollision d;
+    d.restitution = n.restitution, d.duration = n.duration;
+    Motion m{0.0, 1.0};
+    double t = 0.0;
+    if (start == SpringStart::atTouch && !limitForce) {
+        t = normal.forceZeroFrom({0.0, 1.0}, 0.0);
+        m = spring.after(m, t);
+        m.x = -spring.c * m.u / spring.k;
+    }
+    d.tangentialRestitution = -spring.after(m, n.forceDuration - t).u;
+    return d;
+}
+
+// exactRestitution under YADE's facet mass: coefficients per unit of the
+// contact's true meff for which the collision at step dt restitutes what
+// halvedMassLaw gives and lasts as long (the glue, which scales by meff/2,
+// applies twice these). Its `requested` holds that law's duration and
+// restitution, `tangentialTarget` its et, `halvedFrom` the request p. A law
+// whose sticking contact point does not even reverse (et <= 0: a small en
+// with a large et and limitForce off, whose spring lets go early) has none:
+// tangentialUnreachable.
+inline ExactSolution halvedMassCoefficients(const ContactParameters& p, double dt, bool limitForce, SpringStart start)
+{
+    const DiscreteCollision law = halvedMassLaw(p, limitForce, start);
+    const ContactParameters q{law.duration, law.restitution, law.tangentialRestitution, p.mu};
+    ExactSolution s;
+    if (law.tangentialRestitution > 0.0) {
+        s = exactUnitCoefficients(q, dt, limitForce, start, law.tangentialRestitution);
+    } else {
+        s.requested = q, s.dt = dt, s.limitForce = limitForce;
+        s.tangentialTarget = law.tangentialRestitution;
+        s.failure = ExactFailure::tangentialUnreachable;
+    }
+    s.halvedFrom = p;
     return s;
 }
 

@@ -1,6 +1,7 @@
 // The free damped oscillator x'' = -k x - c x' and its closed-form flow over
 // any time (FreeOscillator, Motion): the normal contact between its events, the
-// tangential spring while it sticks. Also combine(), a x + b y on Vec3.
+// tangential spring while it sticks; what one continuous collision of it does
+// (continuousCollision). Also combine(), a x + b y on Vec3.
 // Part of exactCollision (collision.h).
 #pragma once
 
@@ -56,5 +57,24 @@ struct FreeOscillator {
         return zero + half * std::ceil((from - zero) / half);
     }
 };
+
+// What one continuous collision does, from first touch with unit approach
+// rate: restitution, the time the overlap lasts and the time the force lasts
+// (with limitForce the bodies still overlap, force-free, for a while after
+// the force ends).
+struct ContinuousCollision {
+    double restitution, duration, forceDuration;
+};
+
+inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool limitForce)
+{
+    const double half = kPi / o.omega;  // the overlap's zero, half a period (Pournin's: tc)
+    if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
+    // the force k x + c u turns negative after the peak overlap (u < 0), before x returns to 0
+    const double peak = std::atan2(o.omega, o.lambda) / o.omega;
+    const double tf = o.forceZeroFrom({0.0, 1.0}, peak);
+    const Motion m = o.after({0.0, 1.0}, tf);
+    return {-m.u, tf + m.x / -m.u, tf};
+}
 
 }  // namespace viscoelastic

@@ -560,25 +560,6 @@ inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds)
     return law;
 }
 
-// What one continuous collision does, from first touch with unit approach
-// rate: restitution, the time the overlap lasts and the time the force lasts
-// (with limitForce the bodies still overlap, force-free, for a while after
-// the force ends).
-struct ContinuousCollision {
-    double restitution, duration, forceDuration;
-};
-
-inline ContinuousCollision continuousCollision(const FreeOscillator& o, bool limitForce)
-{
-    const double half = kPi / o.omega;  // the overlap's zero: exactly tc
-    if (!limitForce) return {-o.after({0.0, 1.0}, half).u, half, half};
-    // the force k x + c u turns negative after the peak overlap (u < 0), before x returns to 0
-    const double peak = std::atan2(o.omega, o.lambda) / o.omega;
-    const double tf = o.forceZeroFrom({0.0, 1.0}, peak);
-    const Motion m = o.after({0.0, 1.0}, tf);
-    return {-m.u, tf + m.x / -m.u, tf};
-}
-
 // The coefficients a contact under way applies (the step laws), per unit
 // meff like pourninUnitCoefficients (the tangential per unit m_t = 2/7 meff):
 // what the multi-contact timestep guard and a stock run standing in for the

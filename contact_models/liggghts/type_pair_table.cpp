@@ -102,23 +102,34 @@ struct Derived {
     DiscreteCollision nominal;           // Pournin's coefficients at this dt, phase-averaged
     double continuous = 0;               // restitution of the continuous law
     std::optional<ExactSolution> exact;  // exactRestitution on
+    bool halvedMass = false;             // wallMassAsParticle: the law is halvedMassLaw's
 };
 
 // The exact solve takes 1-60 ms per type pair (tc/10 to tc/200): the pair
 // style and each wall solve for themselves rather than share a cache.
-Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exact, SpringStart start)
+// `halvedMass`: a wall with wallMassAsParticle, whose contacts scale the
+// table's coefficients by meff/2 (the law is halvedMassLaw's): the outcomes
+// reported are that law's, and exactRestitution solves for it per unit of
+// the true meff and stores twice that.
+Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exact, SpringStart start, bool halvedMass)
 {
     Derived d;
-    d.nominal = phaseAveragedCollision(pourninUnitCoefficients(p), dt, limitForce, start);
-    d.continuous = continuousRestitution(p.tc, p.en, limitForce);
+    d.halvedMass = halvedMass;
+    UnitCoefficients applied = pourninUnitCoefficients(p);  // per unit of the true meff
+    if (halvedMass) applied.kn *= 0.5, applied.cn *= 0.5, applied.kt *= 0.5, applied.ct *= 0.5;
+    d.nominal = phaseAveragedCollision(applied, dt, limitForce, start);
+    d.continuous = halvedMass ? halvedMassLaw(p, limitForce, start).restitution
+                              : continuousRestitution(p.tc, p.en, limitForce);
     if (!exact) {
         d.unit = pourninUnitCoefficients(p);
-        d.stableTimestep = stableTimestep(p);
+        d.stableTimestep = stableTimestep(p);  // Pournin's; halved, the contact is softer
         return d;
     }
-    d.exact = exactUnitCoefficients(p, dt, limitForce, start);
+    d.exact = halvedMass ? halvedMassCoefficients(p, dt, limitForce, start)
+                         : exactUnitCoefficients(p, dt, limitForce, start);
     d.unit = d.exact->unit;
-    d.stableTimestep = stableTimestep(d.unit);  // the corrected oscillators
+    d.stableTimestep = stableTimestep(d.unit);  // the corrected oscillators, per unit of the true meff
+    if (halvedMass) d.unit.kn *= 2.0, d.unit.cn *= 2.0, d.unit.kt *= 2.0, d.unit.ct *= 2.0;
     return d;
 }
 
@@ -176,11 +187,20 @@ std::string reportLine(const ContactParameters& p, const Derived& d, int i, int 
         format("  (%d,%d): tc/dt %.1f, timestep limit %.4g s, kn/meff %.6g 1/s^2, cn/meff %.6g 1/s, "
                "kt/meff %.6g 1/s^2, ct/meff %.6g 1/s",
                i, j, p.tc / dt, d.stableTimestep, u.kn, u.cn, u.kt, u.ct);
+    const std::string law =
+        d.halvedMass ? " (wall contacts at meff/2, wallMassAsParticle: the coefficients are per unit meff/2)" : "";
     if (!d.exact)
-        return coefficients + format(", restitution %.4f continuous, %.4f at this dt (%+.2f%%), duration %.4g s\n",
+        return coefficients + law + format(", restitution %.4f continuous, %.4f at this dt (%+.2f%%), duration %.4g s\n",
                                      d.continuous, d.nominal.restitution,
                                      100.0 * (d.nominal.restitution / d.continuous - 1.0), d.nominal.duration);
     const ExactSolution& x = *d.exact;
+    if (d.halvedMass)
+        return coefficients + law +
+               format("; YADE's law restitutes %.6f, tangential %.6f, over %.6g s; these: %.6f, %.6f, %.6g s at "
+                      "this dt (nominal coefficients: %.4f, %.4f, %.4g s)\n",
+                      x.requested.en, x.tangentialTarget, x.requested.tc, x.achieved.restitution,
+                      x.achieved.tangentialRestitution, x.achieved.duration, d.nominal.restitution,
+                      d.nominal.tangentialRestitution, d.nominal.duration);
     return coefficients + format(" (Pournin's for tc %.6g s, en %.6f); restitution %.6f, tangential %.6f, "
                                  "duration %.6g s at this dt (nominal coefficients: %.4f, %.4f, %.4g s)\n",
                                  x.tcNormal, x.enNormal, x.achieved.restitution, x.achieved.tangentialRestitution,
@@ -197,8 +217,9 @@ std::optional<std::string> warningOf(const ContactParameters& p, const Derived& 
         return format("viscoelastic: type pair (%d,%d): %s", i, j, w.c_str());
     }
     // limitForce moves the restitution itself, before any timestep error
+    // (under wallMassAsParticle the law is YADE's by request: not warned)
     const double moved = d.continuous / p.en - 1.0;
-    if (limitForce && std::fabs(moved) > kAccuracyWarning)
+    if (limitForce && !d.halvedMass && std::fabs(moved) > kAccuracyWarning)
         return format("viscoelastic: limitForce on: type pair (%d,%d) asks for en %g but, with the attractive end of "
                       "the contact cut, restitutes %.4f (%+.1f%%; %.4f at this timestep); exactRestitution on or "
                       "exactCollision on restitute en %g with limitForce on",
@@ -232,13 +253,6 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
                          bool exact, const char* caller, bool wallMassAsParticle, bool collision,
                          SpringStart start)
 {
-    if (exact && wallMassAsParticle)
-        lmp->error->all(FLERR, format("%s: exactRestitution on contradicts wallMassAsParticle on: the coefficients "
-                                      "are solved for the contact's meff, and wallMassAsParticle then halves it "
-                                      "(YADE's convention), so a wall contact would last sqrt(2) tc and not "
-                                      "restitute en; set one of them off",
-                                      caller)
-                                   .c_str());
     const std::vector<ContactParameters> params = readParameters(lmp, registry, maxType, caller);
     params_ = params;
     const double dt = lmp->update->dt;
@@ -254,7 +268,7 @@ void TypePairTable::load(LAMMPS_NS::LAMMPS* lmp, PropertyRegistry& registry, int
             // corrected coefficients (checkExact), with exactCollision its
             // step law (loadCollision)
             if (!exact && !collision) guardTimestep(lmp, p, i, j, dt, caller);
-            const Derived d = derive(p, dt, limitForce, exact, start);
+            const Derived d = derive(p, dt, limitForce, exact, start, wallMassAsParticle);
             checkExact(lmp, d, i, j, dt, caller);
             unit_[i * stride_ + j] = unit_[j * stride_ + i] = d.unit;
             if (!collision) report += reportLine(p, d, i, j, dt);

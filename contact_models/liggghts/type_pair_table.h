@@ -41,7 +41,9 @@ public:
     // the coefficients are those for which a binary collision at this
     // timestep restitutes en, et and lasts tc (core/exact.h). Then reports
     // the coefficients in the log.
-    // wallMassAsParticle (walls only) contradicts `exact`: an ERROR. With
+    // wallMassAsParticle (walls only): contacts scale the coefficients by
+    // meff/2 (YADE's facet mass); with `exact` they are solved for that law
+    // (core/exact.h, halvedMassCoefficients). With
     // `collision` (exactCollision on, loadCollision follows) the nominal
     // law's accuracy is not warned about. `start`: how the tangential model
     // begins its spring, for exactRestitution's tangential solve.

@@ -58,8 +58,7 @@ RAMPS = [
     ("rel_mu50_cut_a", 0.5, "thesis, no attraction", "cylinder", "from rel_a 21 rpm", 1.76),
     ("rel_mu50_en51_a", 0.5, "thesis, bead-drum en 0.51", "cylinder", "from rel_a 21 rpm", 1.76),
     ("rel_mu50_pournin_a", 0.5, "thesis, tangential pournin", "cylinder", "from rel_a 21 rpm", 1.76),
-    ("rel_mu50_tc20_a", 0.5, "thesis, plain law at tc/20", "cylinder", "from rel_a 21 rpm", 1.76),
-    ("rel_mu50_half_tc20_a", 0.5, "thesis, facet meff m/2, plain law at tc/20", "cylinder", "from rel_a 21 rpm", 1.76),
+    ("rel_mu50_half_a", 0.5, "thesis, facet meff m/2", "cylinder", "from rel_a 21 rpm", 1.76),
     ("rel_mu50_surface_a", 0.5, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
     ("rel_mu95_surface_a", 0.95, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
 ]
