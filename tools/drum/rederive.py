@@ -232,10 +232,12 @@ def stop_rule(speeds, details):
         if why:
             missing.append(f"{rpm:g} rpm ({', '.join(why)})")
     meets = [f"{rpm:g}" for rpm in speeds if not any(m.startswith(f"{rpm:g} rpm") for m in missing)]
-    return ("Not wired in yet. `tools/drum/steady.py` would end a speed when every targeted metric's 95 % "
-            "half-width (`mean_interval` over the window after the steady start) is within its target (default Hc "
-            "0.3 mm, angle 0.3°) with at least 10 effective degrees of freedom, in place of five whole revolutions "
-            "and the standard error (or its chi-square bound) within the target. The window then need not be whole "
+    return ("`tools/drum/steady.py --rule obm` ends a speed when every targeted metric's 95 % half-width "
+            "(`mean_interval` over the window after the steady start) is within its target (default Hc 0.3 mm, "
+            "angle 0.3°) with at least 10 effective degrees of freedom, in place of five whole revolutions and the "
+            "standard error (or its chi-square bound) within the target: the timestep ladder, the 12 mm period's "
+            "check and `study_yade_low` run under it, `study_thesis` ran under the earlier rule. The window need not "
+            "be whole "
             "revolutions: a calm speed stops as soon as its series holds 10 degrees of freedom, and one whose batch "
             "length is long (a slow metric, a swing) runs until its series is about 7.7 batch lengths long. On the "
             "committed windows (at their ends, not where such a rule would first have stopped) Hc and the angle "
