@@ -39,18 +39,19 @@ inline std::string halvedLawText(const ExactSolution& s)
                   a.tc, a.en, a.et, a.tc / s.dt, s.requested.en, s.tangentialTarget, s.requested.tc);
 }
 
-// Why exactUnitCoefficients found no coefficients; empty when it did.
+// A text about the solve (empty: nothing to say), preceded by what it was
+// for where that is YADE's halved law.
+inline std::string aboutTheLaw(const ExactSolution& s, const std::string& text)
+{
+    return text.empty() ? text : halvedLawText(s) + text;
+}
+
+namespace detail {
+
+// The texts below of the solve's own request (`requested`).
 inline std::string failureText(const ExactSolution& s)
 {
     const ContactParameters& p = s.requested;
-    if (s.halvedFrom && s.failure == ExactFailure::tangentialUnreachable && !(s.tangentialTarget > 0.0))
-        return halvedLawText(s) + "a sticking contact point does not even reverse under it, so no tangential "
-                                  "coefficients restitute it: set exactRestitution off, or raise en";
-    if (s.failure != ExactFailure::none && s.halvedFrom) {
-        ExactSolution plain = s;
-        plain.halvedFrom.reset();
-        return halvedLawText(s) + failureText(plain);
-    }
     switch (s.failure) {
     case ExactFailure::none:
         return "";
@@ -68,17 +69,10 @@ inline std::string failureText(const ExactSolution& s)
     return "";
 }
 
-// A dashpot switched off because the request needed a negative one; empty
-// when none was.
 inline std::string warningText(const ExactSolution& s)
 {
     const ContactParameters& p = s.requested;
     std::string w;
-    if (s.halvedFrom && (s.undampedRestitution || s.undampedTangentialRestitution)) {
-        ExactSolution plain = s;
-        plain.halvedFrom.reset();
-        return halvedLawText(s) + warningText(plain);
-    }
     if (s.undampedRestitution)
         w = format("en %g at dt %g s (tc/dt %.2f) would need a negative normal dashpot (the undamped discrete "
                    "contact restitutes %.6f): the dashpot is off",
@@ -90,18 +84,9 @@ inline std::string warningText(const ExactSolution& s)
     return w;
 }
 
-// A dashpot switched off whose contact then restitutes farther than
-// `tolerance` (relative) from the request, or not even reverses: the
-// settings contradict the request. Empty when they do not.
 inline std::string contradictionText(const ExactSolution& s, double tolerance)
 {
     const ContactParameters& p = s.requested;
-    if (s.halvedFrom) {
-        ExactSolution plain = s;
-        plain.halvedFrom.reset();
-        const std::string c = contradictionText(plain, tolerance);
-        return c.empty() ? c : halvedLawText(s) + c;
-    }
     const auto far = [&](double achieved, double wanted) {
         return !(achieved > 0.0) || std::fabs(achieved / wanted - 1.0) > tolerance;
     };
@@ -120,6 +105,29 @@ inline std::string contradictionText(const ExactSolution& s, double tolerance)
                                      "lasts as long as the force)"
                                    : "");
     return "";
+}
+
+}  // namespace detail
+
+// Why exactUnitCoefficients found no coefficients; empty when it did.
+inline std::string failureText(const ExactSolution& s)
+{
+    if (s.halvedFrom && s.failure == ExactFailure::tangentialUnreachable && !(s.tangentialTarget > 0.0))
+        return halvedLawText(s) + "a sticking contact point does not even reverse under it, so no tangential "
+                                  "coefficients restitute it: set exactRestitution off, or raise en";
+    return aboutTheLaw(s, detail::failureText(s));
+}
+
+// A dashpot switched off because the request needed a negative one; empty
+// when none was.
+inline std::string warningText(const ExactSolution& s) { return aboutTheLaw(s, detail::warningText(s)); }
+
+// A dashpot switched off whose contact then restitutes farther than
+// `tolerance` (relative) from the request, or not even reverses: the
+// settings contradict the request. Empty when they do not.
+inline std::string contradictionText(const ExactSolution& s, double tolerance)
+{
+    return aboutTheLaw(s, detail::contradictionText(s, tolerance));
 }
 
 }  // namespace viscoelastic

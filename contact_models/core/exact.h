@@ -219,11 +219,18 @@ inline ExactSolution exactUnitCoefficients(const ContactParameters& p, double dt
 // the tangential spring from (0, 1) while the force lasts; `pournin`
 // without limitForce lets go of it at the force's zero (letGoRestitution).
 // These are the limit dt -> 0 of the discrete collision (discrete.h).
+// The coefficients per unit of the true meff: Pournin's halved.
+inline UnitCoefficients halvedMassUnit(const ContactParameters& p)
+{
+    const UnitCoefficients u = pourninUnitCoefficients(p);
+    return {0.5 * u.kn, 0.5 * u.cn, 0.5 * u.kt, 0.5 * u.ct};
+}
+
 inline DiscreteCollision halvedMassLaw(const ContactParameters& p, bool limitForce, SpringStart start)
 {
-    UnitCoefficients u = pourninUnitCoefficients(p);
-    const FreeOscillator normal(0.5 * u.kn, 0.5 * u.cn);
-    const FreeOscillator spring(0.5 * u.kt / kTangentialMassRatio, 0.5 * u.ct / kTangentialMassRatio);
+    const UnitCoefficients u = halvedMassUnit(p);
+    const FreeOscillator normal(u.kn, u.cn);
+    const FreeOscillator spring(u.kt / kTangentialMassRatio, u.ct / kTangentialMassRatio);
     const ContinuousCollision n = continuousCollision(normal, limitForce);
     DiscreteCollision d;
     d.restitution = n.restitution, d.duration = n.duration;

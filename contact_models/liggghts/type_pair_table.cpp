@@ -115,8 +115,8 @@ Derived derive(const ContactParameters& p, double dt, bool limitForce, bool exac
 {
     Derived d;
     d.halvedMass = halvedMass;
-    UnitCoefficients applied = pourninUnitCoefficients(p);  // per unit of the true meff
-    if (halvedMass) applied.kn *= 0.5, applied.cn *= 0.5, applied.kt *= 0.5, applied.ct *= 0.5;
+    // per unit of the true meff
+    const UnitCoefficients applied = halvedMass ? halvedMassUnit(p) : pourninUnitCoefficients(p);
     d.nominal = phaseAveragedCollision(applied, dt, limitForce, start);
     d.continuous = halvedMass ? halvedMassLaw(p, limitForce, start).restitution
                               : continuousRestitution(p.tc, p.en, limitForce);

@@ -59,6 +59,21 @@ double maxVelocityDifference(const Case& c, const Trajectory& a, const Trajector
     return d;
 }
 
+// The total variation of the restitution over the start phase (4096 phases
+// of the core's recurrence) with unit coefficients u: a midpoint rule over n
+// phases is within variation / (2 n) of the phase average.
+double restitutionVariation(const viscoelastic::UnitCoefficients& u, double dt, bool limitForce)
+{
+    double variation = 0.0, previous = 0.0;
+    for (int k = 0; k <= 4096; ++k) {
+        const double e =
+            viscoelastic::discreteCollisionAtPhase(u, dt, limitForce, std::max(k, 1) / 4096.0).outcome.restitution;
+        if (k > 0) variation += std::fabs(e - previous);
+        previous = e;
+    }
+    return variation;
+}
+
 struct HeadOnParam {
     Geometry geometry;
     bool unequal;
@@ -403,13 +418,7 @@ TEST(ExactRestitution, LiggghtsRestitutesTheRequestAtCoarseSteps)
                 const viscoelastic::ExactSolution s = viscoelastic::exactUnitCoefficients(c.params, c.dt, limit);
                 ASSERT_TRUE(s.ok());
                 const viscoelastic::DiscreteCollision sampled = viscoelastic::sampledCollision(s.unit, c.dt, limit, kPhases);
-                double variation = 0.0, previous = 0.0;
-                for (int k = 0; k <= 4096; ++k) {
-                    const double e = viscoelastic::discreteCollisionAtPhase(s.unit, c.dt, limit,
-                                                                           std::max(k, 1) / 4096.0).outcome.restitution;
-                    if (k > 0) variation += std::fabs(e - previous);
-                    previous = e;
-                }
+                const double variation = restitutionVariation(s.unit, c.dt, limit);
                 const std::string what = name(g) + (limit ? " limitForce" : "") + " tc/" + std::to_string(ratio);
                 EXPECT_NEAR(mean.restitution, sampled.restitution, 1e-9) << what;
                 EXPECT_NEAR(mean.restitution, c.params.en, variation / (2.0 * kPhases) + 1e-9) << what;
@@ -463,13 +472,7 @@ TEST(ExactRestitution, YadesFacetMassIsSolvedForOnWalls)
                 const viscoelastic::ExactSolution s =
                     viscoelastic::halvedMassCoefficients(c.params, c.dt, limit, viscoelastic::SpringStart::wholeStep);
                 ASSERT_TRUE(s.ok());
-                double variation = 0.0, previous = 0.0;
-                for (int i = 0; i <= 4096; ++i) {
-                    const double e = viscoelastic::discreteCollisionAtPhase(s.unit, c.dt, limit,
-                                                                           std::max(i, 1) / 4096.0).outcome.restitution;
-                    if (i > 0) variation += std::fabs(e - previous);
-                    previous = e;
-                }
+                const double variation = restitutionVariation(s.unit, c.dt, limit);
                 const std::string what = name(g) + (limit ? " limitForce" : "") + " tc/" + std::to_string(ratio);
                 std::printf("%s: en %.6f, the halved law's %.6f (the request %.2f); duration %.4g s, the law's %.4g s\n",
                             what.c_str(), mean.restitution, want, en, mean.duration, halvedTc);
