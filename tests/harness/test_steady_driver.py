@@ -45,6 +45,44 @@ class Plan(unittest.TestCase):
         self.assertEqual(steady.plan([7, 14], {7: committed(None, "a"), 14: committed("a", "b", other)}, SETTINGS,
                                      force=True), [(7, True), (14, False)])
 
+    def test_extend_takes_a_speed_whose_stop_rule_alone_changed(self):
+        # longer cap and another rule: the same trajectory, decided again and run on; without
+        # --extend the study stops and says the option exists
+        old = dict(SETTINGS, cap=20.0)
+        c = {7: committed(None, "a", old), 14: committed("a", "b", old), 21: committed("b", "c")}
+        self.assertEqual(steady.plan([7, 14, 21], c, SETTINGS, extend=True), [(7, "extend"), (14, "extend"), (21, True)])
+        with self.assertRaisesRegex(chain.PlanError, r"7 rpm is committed with other settings \(cap\).*--extend"):
+            steady.plan([7, 14, 21], c, SETTINGS)
+
+    def test_an_extended_speed_is_done_for_its_earlier_settings(self):
+        # extended under a later cap: the study's first command still finds it committed
+        later = dict(SETTINGS, cap=60.0)
+        c = {7: dict(committed(None, "a2", later), earlier_states_sha256=["a"], earlier_settings=[SETTINGS]),
+             14: committed("a", "b")}
+        self.assertEqual(steady.plan([7, 14], c, SETTINGS), [(7, True), (14, True)])
+        with self.assertRaisesRegex(chain.PlanError, r"7 rpm is committed with other settings \(cap\)"):
+            steady.plan([7, 14], c, dict(SETTINGS, cap=40.0))
+
+    def test_extend_never_takes_another_trajectory(self):
+        other = dict(SETTINGS, segment=0.5)
+        with self.assertRaisesRegex(chain.PlanError, r"7 rpm is committed with other settings \(segment\)"):
+            steady.plan([7], {7: committed(None, "a", other)}, SETTINGS, extend=True)
+        # nor a speed from another start (it is redone, as without --extend)
+        self.assertEqual(steady.plan([7, 14], {7: committed(None, "a"), 14: committed("x", "b", dict(SETTINGS, cap=20.0))},
+                                     SETTINGS, force=True, extend=True), [(7, True), (14, False)])
+
+    def test_the_successors_of_an_extended_speed_stay_committed(self):
+        # 7 rpm ran on from "a" to "a2" after 14 rpm had started from "a"; "a0" was never 7 rpm's
+        c = {7: dict(committed(None, "a2"), earlier_states_sha256=["a"]), 14: committed("a", "b"), 21: committed("b", "c")}
+        self.assertEqual(steady.plan([7, 14, 21], c, SETTINGS), [(7, True), (14, True), (21, True)])
+        c[14] = committed("a0", "b")
+        self.assertEqual(steady.plan([7, 14, 21], c, SETTINGS), [(7, True), (14, False), (21, False)])
+
+    def test_a_first_speed_from_an_extended_state_of_another_study(self):
+        c = {21: committed("old", "a")}
+        self.assertEqual(steady.plan([21], c, SETTINGS, first_state={"new", "old"}), [(21, True)])
+        self.assertEqual(steady.plan([21], c, SETTINGS, first_state={"new"}), [(21, False)])
+
 
 class Verdict(unittest.TestCase):
     def test_done_capped_continue(self):
@@ -319,6 +357,23 @@ class ObmRule(unittest.TestCase):
         # capped before it settled: no steady window, the batch means stay
         kept = steady.obm_columns({"batches": 5.0, "Hc_m": -0.5, "Hc_se_m": 1.0}, snaps, math.nan, 0.05, metrics)
         self.assertEqual((kept["batches"], kept["Hc_m"]), (5.0, -0.5))
+
+    def test_all_dof_holds_every_metric_to_ten_dof(self):
+        # --all-dof: a metric without a target (the bed's turn) still needs its 10 dof
+        targets = {"Hc": 5e-5}
+        hc = self.IV(-0.097, 4e-5, 12.0, 1.0, 1.8e-5)
+        self.assertEqual(steady.obm_verdict({"Hc": hc, "bed_turn": self.IV(0.9, 0.3, 1.4, 4.1, 0.2)}, targets, 8.5, 40.0),
+                         "continue")
+        self.assertEqual(steady.obm_verdict({"Hc": hc, "bed_turn": self.IV(0.9, 0.3, 10.2, 4.1, 0.1)}, targets, 8.5, 40.0),
+                         "done")
+        # time still needed: its batch length times 1 + 10 / 1.5 (obm_dof's 1.5 (n/b - 1) = 10), less the window
+        left = steady.obm_still_needed({"Hc": hc, "bed_turn": self.IV(0.9, 0.3, 1.4, 4.1, 0.2)}, targets, 8.5)
+        self.assertAlmostEqual(left, 4.1 * (1 + 10 / 1.5) - 8.5)
+        self.assertEqual(steady.obm_still_needed({"Hc": hc}, targets, 8.5), 0.0)
+        with self.assertRaises(SystemExit):  # the revolutions rule has no degrees of freedom to hold
+            steady.arguments(["--all-dof"])
+        self.assertEqual(steady.Study(steady.arguments(["--rule", "obm", "--all-dof"])).settings["all_dof"], True)
+        self.assertNotIn("all_dof", steady.Study(steady.arguments(["--rule", "obm"])).settings)
 
     T10 = float(steady.estimator.stats.t.ppf(0.975, 10))
 

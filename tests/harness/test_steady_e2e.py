@@ -179,5 +179,81 @@ class InterruptedChain(unittest.TestCase):
         self.assertEqual(len(table[1]), 3)
 
 
+
+class ExtendedChain(unittest.TestCase):
+    """--extend: a committed chain (21 rpm capped after 2 segments, 28 rpm after 3) given a later
+    cap runs on from each speed's committed end state, not from the grid; 21 rpm's series then
+    equals that of a run capped there in the first place, and 28 rpm, started from 21 rpm's
+    earlier end state, is extended too, not redone. A changed stop rule that asks for nothing
+    more rewrites the records only."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_extend_e2e_"))
+        cls.names = [f"e2e_extend_{os.getpid()}_{k}" for k in ("whole", "ext")]
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+        for n in cls.names:
+            shutil.rmtree(REPO / "post" / n, ignore_errors=True)
+
+    def run_study(self, name, settings, *extra):
+        r = subprocess.run(command(name, self.tmp, *extra, settings=settings), cwd=REPO, capture_output=True, text=True)
+        said = r.stdout + r.stderr
+        self.assertEqual(r.returncode, 0, said[-3000:])
+        return said
+
+    def test_an_extended_chain_runs_on_from_its_end_states(self):
+        whole, ext = self.names
+        longer = [x if x != "0.06" else "0.08" for x in CHAIN]  # --cap 0.08
+        self.run_study(whole, ["--speeds", "21", *longer[2:]])
+        self.run_study(ext, CHAIN)
+        docs = self.tmp / ext
+        before = {rpm: json.loads((docs / f"{rpm}rpm" / "run.json").read_text()) for rpm in (21, 28)}
+        self.assertEqual((before[21]["segments"], before[28]["segments"]), (2, 3))
+        # without --extend the longer cap is refused, naming the option
+        r = subprocess.run(command(ext, self.tmp, settings=longer), cwd=REPO, capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--extend", r.stdout + r.stderr)
+        said = self.run_study(ext, longer, "--extend")
+        for rpm, last in ((21, 2), (28, 3)):
+            self.assertIn(f"plan: {rpm} rpm: to extend", said)
+            self.assertIn(f"{rpm} rpm, segment {last + 1}:", said)
+            for k in range(1, last + 1):
+                self.assertNotIn(f"{rpm} rpm, segment {k}:", said)
+        after = {rpm: json.loads((docs / f"{rpm}rpm" / "run.json").read_text()) for rpm in (21, 28)}
+        # 21 rpm as if capped at 0.08 s from the start: the same series, snapshot by snapshot, and
+        # averages within the series' 10 digits (the extension's earlier part is read from them)
+        self.assertEqual((self.tmp / whole / "21rpm" / "series_metrics.csv").read_text(),
+                         (docs / "21rpm" / "series_metrics.csv").read_text())
+        a, b = [(d / "21rpm" / "series_average.csv").read_text().splitlines() for d in (self.tmp / whole, docs)]
+        self.assertEqual(a[0], b[0])
+        for key, x, y in zip(a[0].split(","), a[1].split(","), b[1].split(",")):
+            if "nan" in (x, y) or "" in (x, y):
+                self.assertEqual(x, y, key)
+            else:
+                self.assertAlmostEqual(float(x), float(y), delta=1e-9 * max(1.0, abs(float(x))), msg=key)
+        self.assertEqual(after[21]["simulated_s"], json.loads((self.tmp / whole / "21rpm" / "run.json").read_text())[
+            "simulated_s"])
+        # 28 rpm kept its start, which 21 rpm lists among its earlier end states
+        self.assertEqual(after[28]["start_state_sha256"], before[28]["start_state_sha256"])
+        self.assertEqual(after[21]["earlier_states_sha256"], [before[21]["state_sha256"]])
+        self.assertEqual(after[28]["segments"], 4)
+        self.assertEqual(len(after[28]["loops"]), 4)
+        # done: the same command runs nothing, and so does the chain's first (its series is in it)
+        self.assertNotIn("segment", self.run_study(ext, longer, "--extend"))
+        self.assertNotIn("segment", self.run_study(ext, CHAIN))
+        # a stop rule that asks for nothing more (a target, the cap reached): records only
+        state = (docs / "21rpm" / "state.restart.gz").read_bytes()
+        said = self.run_study(ext, [*longer, "--target", "Hc=0.001"], "--extend")
+        self.assertNotIn("segment", said)
+        self.assertEqual((docs / "21rpm" / "state.restart.gz").read_bytes(), state)
+        last = json.loads((docs / "21rpm" / "run.json").read_text())
+        self.assertEqual(last["settings"]["targets"], {"Hc": 0.001})
+        self.assertEqual((last["outcome"], last["state_sha256"], last["segments"]), ("capped", after[21]["state_sha256"], 3))
+        self.assertEqual(last["earlier_states_sha256"], [before[21]["state_sha256"]])
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -21,7 +21,12 @@ the cost go to docs/drum/NAME/<rpm>rpm/, its row to docs/drum/NAME.csv, the stud
 Rerunning the command continues from what is committed (and from the segments in post/NAME/ of a
 speed in progress); a committed speed with other settings stops it. A checkpoint or segment of
 the same trajectory (period, -var settings, segment and settle) is resumed when only the stop rule
-changed (targets, cap, rule): the new rule decides from there.
+changed (targets, cap, rule): the new rule decides from there. With --extend, so is a committed
+speed: decided again under this rule from its committed series and, where the rule asks for more,
+run on from its committed end state (its series and state extended, as if it had run longer in the
+first place). The speeds after it, and other studies started from one of its committed states,
+stay valid: run.json lists the earlier end states (`earlier_states_sha256`), points of the same
+steady flow.
 
 A speed can outlast a working day (7 rpm: five revolutions are 43 s simulated, hours of the
 machine). Every --checkpoint-minutes of wall time (and with --checkpoint-now, at once) the speed
@@ -98,6 +103,8 @@ def settings_of(args):
         settings["rule"] = args.rule
     if args.fresh_start:
         settings["fresh_start"] = True
+    if args.all_dof:
+        settings["all_dof"] = True
     return settings
 
 
@@ -109,23 +116,39 @@ def sha256(path):
     return h.hexdigest()
 
 
-def plan(speeds, committed, settings, force=False, first_state=None):
+def states_of(record):
+    """The end states a committed speed has had: its state now and, where it was extended, the
+    earlier ones (a successor started from any of them follows the same steady flow)."""
+    return {record["state_sha256"], *record.get("earlier_states_sha256", [])}
+
+
+def plan(speeds, committed, settings, force=False, first_state=None, extend=False):
     """Which speeds to run. `committed`: {rpm: its run.json or None}. A speed counts as done if
-    committed with these settings and started from the state its predecessor has now (the start
-    state's hash; for the first speed `first_state`, the hash of --start-state, None for the
-    grid), so redoing one speed redoes every faster one. A speed committed with other
-    settings stops the study (PlanError naming it) unless `force`. Returns [(rpm, done)]."""
-    out, previous_state = [], first_state
+    committed with these settings and started from a state its predecessor has had (`states_of`;
+    for the first speed `first_state`, the hash of --start-state or a set of such hashes, None for
+    the grid), so redoing one speed redoes every faster one. A speed committed with other
+    settings stops the study (PlanError naming it) unless `force`, or, with `extend`, where only
+    the stop rule differs (`TRAJECTORY` the same), is to be extended ("extend"): decided again
+    under this rule and run on from its end state. A speed extended since is done for the
+    settings it was committed under before (`earlier_settings`: it holds all their series and
+    more). Returns [(rpm, True | False | "extend")]."""
+    out = []
+    previous = first_state if isinstance(first_state, (set, frozenset)) else {first_state}
     for rpm in speeds:
         c = committed.get(rpm)
-        if c is not None and c["settings"] != settings and not force:
+        same_flow = c is not None and c["start_state_sha256"] in previous
+        ours = c is not None and (c["settings"] == settings or settings in c.get("earlier_settings", []))
+        extensible = extend and same_flow and trajectory(c["settings"]) == trajectory(settings)
+        if c is not None and not ours and not force and not extensible:
             changed = sorted(k for k in set(c["settings"]) | set(settings)
                              if c["settings"].get(k) != settings.get(k))
+            hint = (" (or --extend: only its stop rule differs)" if same_flow and not extend
+                    and trajectory(c["settings"]) == trajectory(settings) else "")
             raise chain.PlanError(f"{rpm} rpm is committed with other settings ({', '.join(changed)}); "
-                                  "use another --name, or --force to redo it")
-        done = c is not None and c["settings"] == settings and c["start_state_sha256"] == previous_state
+                                  f"use another --name, or --force to redo it{hint}")
+        done = same_flow and (ours or ("extend" if extensible else False))
         out.append((rpm, done))
-        previous_state = c["state_sha256"] if done else "pending"
+        previous = states_of(c) if done else {"pending"}
     return out
 
 
@@ -213,21 +236,25 @@ def at_min_dof(iv):
 
 
 def obm_verdict(intervals, targets, simulated, cap):
-    """--rule obm, after a segment: 'done' where every target metric has MIN_DOF effective degrees of
-    freedom or more and its half-width at MIN_DOF (at_min_dof) within its target, else 'capped' or
-    'continue'."""
-    if intervals and all(at_min_dof(iv) <= targets[k] and iv.dof >= estimator.MIN_DOF for k, iv in intervals.items()):
+    """--rule obm, after a segment: 'done' where every metric of `intervals` (the targets', with
+    --all-dof every metric's) has MIN_DOF effective degrees of freedom or more and each target
+    metric's half-width at MIN_DOF (at_min_dof) is within its target, else 'capped' or 'continue'."""
+    if intervals and all(iv.dof >= estimator.MIN_DOF and (k not in targets or at_min_dof(iv) <= targets[k])
+                         for k, iv in intervals.items()):
         return "done"
     return "capped" if simulated >= cap - 1e-9 else "continue"
 
 
 def obm_still_needed(intervals, targets, averaged):
-    """Simulated seconds still needed, about, for the half-widths to reach their targets (they fall
-    as the square root of the time averaged); nan before the series has settled."""
-    ratios = [(at_min_dof(iv) / targets[k]) ** 2 for k, iv in intervals.items()]
+    """Simulated seconds still needed, about: for the half-widths to reach their targets (they fall
+    as the square root of the time averaged), and for MIN_DOF degrees of freedom at each metric's
+    batch length (obm_dof: 1.5 (n/b - 1)); nan before the series has settled."""
+    ratios = [(at_min_dof(iv) / targets[k]) ** 2 for k, iv in intervals.items() if k in targets]
     if not ratios or not averaged > 0 or not all(math.isfinite(r) for r in ratios):
         return float("nan")
-    return max(averaged * (max(ratios) - 1.0), 0.0)
+    dof = [iv.batch_seconds * (1.0 + estimator.MIN_DOF / 1.5) - averaged for iv in intervals.values()
+           if iv.dof < estimator.MIN_DOF and math.isfinite(iv.batch_seconds)]
+    return max([averaged * (max(ratios) - 1.0), 0.0, *dof])
 
 
 def pack(src, dst):
@@ -295,6 +322,16 @@ class Study:
             unpack(given, plain)
         return plain, sha256(given)
 
+    def first_states(self, first_sha):
+        """The hashes a first speed may have started from: --start-state's, and where it is a
+        study's committed end state that was extended since, its earlier ones (`states_of`)."""
+        if not self.args.start_state:
+            return {first_sha}
+        record = Path(self.args.start_state).resolve().parent / "run.json"
+        if record.exists() and (r := harness.read_json(record)).get("state_sha256") == first_sha:
+            return states_of(r)
+        return {first_sha}
+
     def committed(self, rpm):
         p = self.docs / f"{rpm}rpm" / "run.json"
         return harness.read_json(p) if p.exists() else None
@@ -320,8 +357,11 @@ class Study:
         previous, previous_done = None, True
         for rpm, done in steps:
             progress = self.work / f"{rpm}rpm_progress.json"
-            if not done and previous_done and progress.exists():
-                start, start_sha = self.start_of(previous, first, first_sha)
+            if done is not True and previous_done and progress.exists():
+                if done == "extend":
+                    start, start_sha = self.extension_start(rpm), self.committed(rpm)["start_state_sha256"]
+                else:
+                    start, start_sha = self.start_of(previous, first, first_sha)
                 record = harness.read_json(progress)
                 if (record["state"] and trajectory(record["settings"]) == trajectory(self.settings)
                         and record["start"] == str(start)
@@ -330,7 +370,7 @@ class Study:
                         self.checkpoint(rpm, {**record, "start_sha256": start_sha})
                     except FileNotFoundError:  # a running study moved on to its next segment meanwhile
                         self.checkpoint(rpm, {**harness.read_json(progress), "start_sha256": start_sha})
-            previous, previous_done = rpm, done
+            previous, previous_done = rpm, done is not False
 
     def cache(self, rpm):
         """drum_metrics' per-snapshot metrics of the speed so far (all its segments)."""
@@ -427,15 +467,16 @@ class Study:
         return harness.read_csv_text(harness.tool("drum_metrics", *args))[0]
 
     def intervals(self, rpm, row):
-        """--rule obm: each target metric's 95 % interval (tools/drum/estimator.py) over the
-        snapshots from the steady start (`drum_metrics steady`'s) to the last; {} before the series
-        has settled."""
+        """--rule obm: each target metric's 95 % interval (tools/drum/estimator.py), with --all-dof
+        every metric's, over the snapshots from the steady start (`drum_metrics steady`'s) to the
+        last; {} before the series has settled."""
         start = float(row["steady_from_s"])
         if row["settled"] not in (1.0, "1", "true", True) or not math.isfinite(start):
             return {}
         columns = {m["key"]: m["column"] for m in harness.drum_metric_table()}
+        keys = [*self.args.targets, *(k for k in columns if self.args.all_dof and k not in self.args.targets)]
         return estimator.window_intervals(harness.read_csv(self.cache(rpm)), start, self.dumpdt,
-                                          {k: columns[k] for k in self.args.targets}, CONFIDENCE)
+                                          {k: columns[k] for k in keys}, CONFIDENCE)
 
     def decide(self, rpm, simulated):
         """(verdict, the drum_metrics steady row, --rule obm's intervals or None) of the speed's series
@@ -446,12 +487,42 @@ class Study:
         intervals = self.intervals(rpm, row)
         return obm_verdict(intervals, self.args.targets, simulated, self.args.cap), row, intervals
 
-    def run_speed(self, rpm, start, start_sha):
+    def extension_start(self, rpm):
+        """What a speed's extension records as its start (`run_speed`'s `start`): its committed end
+        state (the extension runs on from its own end state, not from its predecessor's)."""
+        return self.docs / f"{rpm}rpm" / "state.restart.gz"
+
+    def from_committed(self, rpm, base, start, start_sha):
+        """A committed speed to be extended (`base`: its run.json) as a progress record in post/:
+        its end state as its last segment's, its series as the metrics cache (each snapshot's step
+        from its time; the values to the series' 10 digits) and its counts; as yet decided under
+        its old rule."""
+        self.forget(rpm)
+        self.work.mkdir(parents=True, exist_ok=True)
+        out = self.docs / f"{rpm}rpm"
+        state = self.work / f"{rpm}rpm_seg{base['segments']}.restart"
+        unpack(out / "state.restart.gz", state)
+        header, *lines = [line for line in (out / "series_metrics.csv").read_text().splitlines() if line.strip()]
+        steps = [round(float(line.split(",", 1)[0]) / self.dt) for line in lines]
+        with harness.whole(self.cache(rpm)) as tmp:
+            tmp.write_text("".join(f"{k},{line}\n" for k, line in zip(["step", *steps], [header, *lines])))
+        done = {"settings": base["settings"], "start": str(start), "start_sha256": start_sha,
+                "segments": base["segments"], "simulated_s": base["simulated_s"], "cpu_s": base["cpu_s"],
+                "beads": base["beads"], "loops": list(base.get("loops", [])), "last_step": max(steps),
+                "state": str(state), "outcome": base["outcome"]}
+        harness.write_json(self.work / f"{rpm}rpm_progress.json", done)
+        harness.say(WHO, f"{rpm} rpm: extending the committed speed ({base['segments']} segments, "
+                         f"{base['simulated_s']:g} s simulated, {base['outcome']})")
+        return done
+
+    def run_speed(self, rpm, start, start_sha, base=None):
         """Segments until the verdict; returns (verdict, progress record, end-state restart).
         After each segment its end state is copied to <rpm>rpm_seg<k>.restart and only then
         recorded in <rpm>rpm_progress.json: an interruption at any point resumes from a whole
         state, and snapshots written after it (by an interrupted segment) are removed. Without
-        segments in post/ (a fresh clone) a committed checkpoint is the place to resume."""
+        segments in post/ (a fresh clone) a committed checkpoint is the place to resume. `base`:
+        the run.json of a committed speed to extend (`from_committed`), unless an extension of it
+        in post/ or in a checkpoint is further on."""
         a = self.args
         self.work.mkdir(parents=True, exist_ok=True)
         progress = self.work / f"{rpm}rpm_progress.json"
@@ -462,6 +533,8 @@ class Study:
                              "state: not resumed")
             done = None
         done = self.restore(rpm, start, start_sha, done)
+        if base is not None and (not done or done["segments"] < base["segments"]):
+            done = self.from_committed(rpm, base, start, start_sha)
         if not done:
             self.forget(rpm)
             done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha, "segments": 0,
@@ -515,8 +588,10 @@ class Study:
                 errors = f"{row['batches']} batches, " + ", ".join(f"{c} {row[c]:.3g}" for c in row if "_se_" in c)
                 still = still_needed(row, done["last_step"] * self.dt, rpm, a.min_batches, self.dumpdt)
             else:
-                errors = ", ".join(f"{k} 95 % half-width {iv.half_width:.3g} ({iv.dof:.1f} dof)"
-                                   for k, iv in intervals.items()) or "no interval yet"
+                errors = ", ".join([f"{k} 95 % half-width {iv.half_width:.3g} ({iv.dof:.1f} dof)"
+                                    for k, iv in intervals.items() if k in a.targets] +
+                                   [f"{k} {iv.dof:.1f} dof" for k, iv in intervals.items()
+                                    if k not in a.targets and iv.dof < estimator.MIN_DOF]) or "no interval yet"
                 still = obm_still_needed(intervals, a.targets, done["last_step"] * self.dt - row["steady_from_s"])
             if outcome == "continue":
                 left = f" ({progress_note(still, done['loops'], self.dt, a.rule)})"
@@ -524,18 +599,21 @@ class Study:
                              f"{errors}: {outcome}{left}")
         return outcome, done, Path(done["state"])
 
-    def finish(self, rpm, outcome, done, restart, start_sha):
-        """Series, averages, picture and state of a finished speed into docs/, and its row."""
+    def finish(self, rpm, outcome, done, restart, start_sha, base=None):
+        """Series, averages, picture and state of a finished speed into docs/, and its row. An
+        extended speed (`base`: its run.json before) that ran no new segment keeps its files: its
+        row and record are those of the new rule."""
         a = self.args
         out = self.docs / f"{rpm}rpm"
         out.mkdir(parents=True, exist_ok=True)
-        harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series", batch_seconds=f"{revolution(rpm):.10g}",
-                            cache=self.cache(rpm))
-        harness.render(self.prefix(rpm), out / "picture.png")
-        pack(restart, out / "state.restart.gz")
+        if base is None or done["segments"] > base["segments"]:
+            harness.drum_series(self.prefix(rpm), self.dt, rpm, out=out / "series",
+                                batch_seconds=f"{revolution(rpm):.10g}", cache=self.cache(rpm))
+            harness.render(self.prefix(rpm), out / "picture.png")
+            pack(restart, out / "state.restart.gz")
         average = harness.read_csv(out / "series_average.csv")[0]
         steady_from = average["steady_from_s"]
-        t_end = max(s for s, _ in harness.snapshots(self.prefix(rpm))) * self.dt
+        t_end = done["last_step"] * self.dt  # the last snapshot's
         # times are whole steps of dt: rounded to 1 ns so that a difference of two of them reads 0, not -7e-15
         averaged = round(t_end - steady_from, 9) if not math.isnan(steady_from) else float("nan")
         row = {"rpm": rpm, "conventions": a.variables.get("conventions", "thesis"),
@@ -557,6 +635,11 @@ class Study:
                   "loops": done.get("loops", []), "start_state_sha256": start_sha,
                   "state_sha256": sha256(out / "state.restart.gz"),
                   "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
+        if base is not None:
+            if earlier := sorted(states_of(base) - {record["state_sha256"]}):
+                record["earlier_states_sha256"] = earlier  # where its successors may have started
+            settings = [x for x in base.get("earlier_settings", []) + [base["settings"]] if x != self.settings]
+            record["earlier_settings"] = [x for k, x in enumerate(settings) if x not in settings[:k]]
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
         written = report.write(a.name, self.docs.parent)  # the study's report, with this speed in it
@@ -571,9 +654,10 @@ class Study:
         self.command = "tools/drum/steady.py " + shlex.join(sys.argv[1:])
         self.last_checkpoint = time.monotonic()
         first, first_sha = self.first_state()
-        steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force, first_sha)
+        steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force,
+                     self.first_states(first_sha), a.extend)
         for rpm, done in steps:
-            harness.say(WHO, f"plan: {rpm} rpm: {'committed' if done else 'to run'}")
+            harness.say(WHO, f"plan: {rpm} rpm: {'to extend' if done == 'extend' else 'committed' if done else 'to run'}")
         if a.dry_run:
             return 0
         if a.checkpoint_now:
@@ -589,11 +673,16 @@ class Study:
                        *report.write(a.name, self.docs.parent))
         previous = None
         for rpm, done in steps:
-            if not done:
-                start, start_sha = self.start_of(previous, first, first_sha)
+            if done is not True:
                 began = time.monotonic()
-                outcome, record, restart = self.run_speed(rpm, start, start_sha)
-                self.finish(rpm, outcome, record, restart, start_sha)
+                if done == "extend":
+                    base = self.committed(rpm)
+                    start, start_sha = self.extension_start(rpm), base["start_state_sha256"]
+                else:
+                    base = None
+                    start, start_sha = self.start_of(previous, first, first_sha)
+                outcome, record, restart = self.run_speed(rpm, start, start_sha, base)
+                self.finish(rpm, outcome, record, restart, start_sha, base)
                 harness.say(WHO, f"{rpm} rpm took {(time.monotonic() - began) / 60:.1f} min")
             previous = rpm
         return 0
@@ -636,6 +725,13 @@ def arguments(argv=None):
                    help="where finished speeds go: DOCS/NAME/<rpm>rpm/ and DOCS/NAME.csv (default: docs/drum)")
     p.add_argument("--commit", action="store_true", help="git commit each speed as soon as it is done")
     p.add_argument("--force", action="store_true", help="redo speeds committed with other settings")
+    p.add_argument("--extend", action="store_true",
+                   help="a speed committed under another stop rule (targets, cap, rule, --all-dof; the same period, "
+                        "-var settings, segment and settle) is decided again under this one and, where it asks for "
+                        "more, runs on from its committed end state; the speeds after it stay committed")
+    p.add_argument("--all-dof", action="store_true",
+                   help="--rule obm: every metric's interval, not only the targets', must have 10 effective degrees "
+                        "of freedom for a speed to be done")
     p.add_argument("--checkpoint-minutes", type=float, default=120.0,
                    help="checkpoint the speed in progress to docs/ after a segment once this many minutes of wall "
                         "time have passed since the last (default: %(default)s; 0: after every segment)")
@@ -651,6 +747,8 @@ def arguments(argv=None):
             raise chain.PlanError(f"--confidence {args.confidence}: must be in [0, 1)")
         if args.confidence > 0 and args.min_batches < 2:
             raise chain.PlanError(f"--min-batches {args.min_batches}: the SE bound needs 2 batches at least")
+        if args.all_dof and args.rule != "obm":
+            raise chain.PlanError("--all-dof: needs --rule obm")
         if args.segment <= 0 or args.cap < args.segment or args.settle < 0:
             raise chain.PlanError(f"--segment {args.segment} --cap {args.cap} --settle {args.settle}: "
                                   "need 0 < segment <= cap, settle >= 0")
