@@ -58,6 +58,41 @@ class Release(unittest.TestCase):
         self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": 33.0}])[0], 0.024)
         self.assertEqual(release.scan_period(full + [{"study": release.CHECK, "release_rpm": math.nan}])[0], 0.024)
 
+    def test_the_holds_speeds_and_outcomes(self):
+        rows = [{"study": "rel_mu95_a", "release_rpm": 31.53}, {"study": "rel_mu95_b", "release_rpm": 32.9},
+                {"study": "rel_mu95_c", "release_rpm": 31.07}]
+        # every history ran 30 rpm through carried (the earliest let go in 31); none reached 33 carried
+        self.assertEqual(release.hold_speeds(rows, 0.95), (30, 33))
+        self.assertIsNone(release.hold_speeds(rows[:2], 0.95))  # a history still to come
+        self.assertIsNone(release.hold_speeds(rows[:2] + [{"study": "rel_mu95_c", "release_rpm": math.nan}], 0.95))
+        self.assertIsNone(release.hold_speeds(rows, 0.5))
+        with tempfile.TemporaryDirectory() as d:
+            docs = Path(d)
+            # held 30 rpm carried; 33 rpm lets go 40 % into its 4 s; a third speed that came in released
+            ramp(docs, "hold", [30, 33, 34], let_go=33.4, per=4.0)
+            series = release.slip.ramp_series(docs, "hold")
+            self.assertEqual(release.hold_outcome(series, 30), "carried throughout")
+            self.assertRegex(release.hold_outcome(series, 33), r"let go 1\.6\d s into the hold")
+            self.assertIn("came in released", release.hold_outcome(series, 34))
+            # the table: one row per held speed, with where it started
+            ramp(docs, "rel_mu95_hold", [30, 33], let_go=33.4, per=4.0)
+            harness.write_csv(docs / "rel_mu95_hold.csv", [
+                {"rpm": rpm, "bed_turn_1": turn, "bed_turn_hw95_1": 0.01, "bed_turn_dof": 11.0}
+                for rpm, turn in ((30, 0.99), (33, 0.6))])
+            for rpm in (30, 33):
+                harness.write_json(docs / "rel_mu95_hold" / f"{rpm}rpm" / "run.json", {"simulated_s": 4.0, "settings": {}})
+            held = release.read_holds(docs, [("rel_mu95_hold", 0.95), ("rel_mu50_hold", 0.5)])
+            self.assertEqual([(h["rpm"], h["outcome"][:7]) for h in held], [(30, "carried"), (33, "let go ")])
+            self.assertIn("rel_mu95_a's 30 rpm", held[0]["start"])
+            self.assertIn("hold's 30 rpm", held[1]["start"])
+            # a bed that slips for a while and is carried again
+            ramp(docs, "flicker", [30], per=4.0)
+            rows = harness.read_csv(docs / "flicker" / "30rpm" / "series_metrics.csv")
+            for r in rows[20:40]:
+                r["bed_turn_1"] = 0.5
+            harness.write_csv(docs / "flicker" / "30rpm" / "series_metrics.csv", rows)
+            self.assertIn("on and off", release.hold_outcome(release.slip.ramp_series(docs, "flicker"), 30))
+
     def test_the_rigid_bed_estimate(self):
         # the segment's area and centroid against a numerical integration over the drum's section
         eps, s = release.segment(0.40)

@@ -257,6 +257,21 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
       save "Drum: where the bed lets go, bead-drum mu up to 0.$tag" docs/drum/release.csv docs/drum/release.png
     fi
   done
+  # Holds (tools/drum/release.py, module note): does a bed held steady at one speed let go where the
+  # ramps do? At mu 0.5 and 0.95, the fastest speed all three ramps ran through carried, from the
+  # first ramp's state there, then the slowest none reached carried, from that hold's end state;
+  # the power rule, at most 12 s each.
+  for tag in 50 95; do
+    if hold=$("$py" tools/drum/release.py --hold "0.$tag"); then
+      read -r below above start <<< "$hold"
+      steady --name "rel_mu${tag}_hold" --speeds "$below,$above" --period "$scan" --start-state "$start" \
+        "${thesis[@]}" --var bd_mu "0.$tag" --segment 2 --cap 12 --rule obm
+    fi
+  done
+  if [[ ${#now[@]} -eq 0 ]]; then
+    "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
+    save "Drum: where a bed held steady lets go" docs/drum/release.csv docs/drum/release.png docs/drum/release_holds.csv
+  fi
   # YADE's other conventions one at a time at mu 0.5 (one history, a's; beside rel_mu50_a..c): no
   # attraction, en 0.51, the tangential law the thesis prints (pournin: its contact histories start
   # afresh), and the facet mass m/2 (exactRestitution solves for the halved law, so at the scan's
@@ -274,7 +289,8 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
   fi
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
-    save "Drum: where the bed lets go, YADE's conventions one at a time" docs/drum/release.csv docs/drum/release.png
+    save "Drum: where the bed lets go, YADE's conventions one at a time" docs/drum/release.csv docs/drum/release.png \
+      docs/drum/release_holds.csv
   fi
 fi
 ladder dt_tc40 2.5e-6 off 0.5 0.2

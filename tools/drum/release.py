@@ -21,7 +21,16 @@ angle is study_thesis' at 7-28 rpm, a straight line in rpm beyond (read at 21-35
 The ramps are listed in RAMPS (study, bead-drum mu, conventions, wall, history, seconds per rpm);
 a study not yet run is left out.
 
-  tools/drum/release.py                  # docs/drum/release.csv, release.png
+A ramp lets go somewhere in a speed it spent 1.76 s at; would a bed held steady at one speed let
+go at all, or only on the way up? The holds answer that for mu 0.5 and 0.95 (HOLDS): a steady run
+(steady.py's power rule, at most 12 s) at the fastest speed every history of the scan at that mu
+ran through carried, from the first history's ramp state at that speed, then chained from its end
+state one at the slowest speed none of them reached carried (`hold_speeds`; `--hold MU` prints
+both and the start state for the campaign). Each held speed's outcome, its bed turn with its 95 %
+interval, goes to docs/drum/release_holds.csv.
+
+  tools/drum/release.py                  # docs/drum/release.csv, release.png, release_holds.csv
+  tools/drum/release.py --hold 0.95      # BELOW ABOVE START-STATE of that hold, or exit 1
 
 Needs: python3-numpy, python3-scipy, python3-matplotlib.
 """
@@ -63,6 +72,8 @@ RAMPS = [
     ("rel_mu95_surface_a", 0.95, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
 ]
 CHECK, AGAINST = "rel_L12_check", ("slip_thesis", "slip_thesis_replica")
+HOLDS = [("rel_mu50_hold", 0.5), ("rel_mu95_hold", 0.95)]  # (study, bead-drum mu): see the module note
+HOLD_COLUMNS = ["study", "mu", "rpm", "start", "simulated_s", "bed_turn", "bed_turn_hw95", "bed_turn_dof", "outcome"]
 COLUMNS = ["study", "mu", "conventions", "wall", "history", "seconds_per_rpm", "release_rpm", "half_way_rpm",
            "froude", "detected"]
 
@@ -212,6 +223,64 @@ def chart(rows, path, angle=None):
     plt.close(fig)
 
 
+def scan_histories(mu):
+    """The friction scan's ramps at mu (the first is the one a hold starts from)."""
+    return [f"rel_mu{round(100 * mu)}_{h}" for h in "abc"]
+
+
+def hold_speeds(rows, mu):
+    """(below, above) of the hold at mu: below, the fastest whole speed that every history of the
+    scan at mu ran through carried (one below the speed the earliest release fell in); above, the
+    slowest none of them reached carried (one above the speed the latest fell in). None until all
+    three histories have let go."""
+    scan = [r for r in rows if r["study"] in scan_histories(mu)]
+    if len(scan) < 3 or not all(math.isfinite(r["release_rpm"]) for r in scan):
+        return None
+    releases = [r["release_rpm"] for r in scan]
+    return math.floor(min(releases)) - 1, math.floor(max(releases)) + 1
+
+
+def hold_outcome(series, rpm):
+    """What a held speed's bed did (`series`: its hold study's ramp_series, `rpm`: this speed):
+    carried throughout (bed_turn's running median never below slip.LETS_GO), let go (below it to
+    the end, from some time into the speed, or already at the start: a bed that came in released),
+    or slipping on and off."""
+    own = [s for s in series if s[1] == rpm]
+    if not own:
+        return "no series"
+    gone = slip.lets_go(series)
+    if gone is not None and gone[1] < rpm:
+        return "released throughout (came in released)"
+    if gone is not None and gone[1] == rpm:
+        return f"let go {gone[2]:.2f} s into the hold"
+    turns = [s[3] for s in own]
+    smooth = [statistics.median(turns[max(0, k - 2):k + 3]) for k in range(len(turns))]
+    if min(smooth) >= slip.LETS_GO:
+        return "carried throughout"
+    return f"slipping on and off (running median of bed_turn below {slip.LETS_GO:g} at times, back above)"
+
+
+def read_holds(docs, holds=HOLDS):
+    """One row per held speed that has finished (its run.json and its row in the study's table)."""
+    rows = []
+    for study, mu in holds:
+        table = docs / f"{study}.csv"
+        if not table.exists():
+            continue
+        series, previous = slip.ramp_series(docs, study), None
+        for r in harness.read_csv(table):
+            rpm = r["rpm"]
+            run = harness.read_json(docs / study / f"{rpm:g}rpm" / "run.json")
+            start = (f"{scan_histories(mu)[0]}'s {rpm:g} rpm end state (carried)" if previous is None
+                     else f"the hold's {previous:g} rpm end state")
+            previous = rpm
+            rows.append({"study": study, "mu": mu, "rpm": rpm, "start": start,
+                         "simulated_s": run["simulated_s"], "bed_turn": r["bed_turn_1"],
+                         "bed_turn_hw95": r.get("bed_turn_hw95_1", math.nan), "bed_turn_dof": r.get("bed_turn_dof", math.nan),
+                         "outcome": hold_outcome(series, rpm)})
+    return rows
+
+
 def scan_period(rows):
     """(period [m], why) for the friction scan: the 12 mm period where its ramp's release (CHECK)
     lies within the 95 % interval of the 24 mm histories' (AGAINST) mean, else the 24 mm period;
@@ -232,11 +301,24 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--docs", default=str(DOCS))
     p.add_argument("--out", default=str(DOCS / "release"), help="OUT.csv and OUT.png")
+    p.add_argument("--hold", type=float, metavar="MU",
+                   help="print the hold's speeds at this bead-drum mu and the state it starts from (BELOW ABOVE "
+                        "START; see hold_speeds) and stop; exit 1 before the scan's three histories at mu have let go")
     p.add_argument("--scan-period", action="store_true",
                    help="print the period the friction scan runs on (0.012 or 0.024; see scan_period) and stop; "
                         "exit 1 before the check has run")
     a = p.parse_args(argv)
     rows = read(Path(a.docs))
+    if a.hold is not None:
+        speeds = hold_speeds(rows, a.hold)
+        start = speeds and Path(a.docs) / scan_histories(a.hold)[0] / f"{speeds[0]}rpm" / "state.restart.gz"
+        if speeds is None or not start.exists():
+            print(f"release: no hold at mu {a.hold:g} yet (" +
+                  ("the scan's three histories have not all let go" if speeds is None else f"{start} is missing") + ")",
+                  file=sys.stderr)
+            return 1
+        print(speeds[0], speeds[1], start)
+        return 0
     if a.scan_period:
         chosen = scan_period(rows)
         if chosen is None:
@@ -247,6 +329,12 @@ def main(argv=None):
         return 0
     out = Path(a.out)
     harness.write_csv(out.with_suffix(".csv"), rows, COLUMNS)
+    holds = read_holds(Path(a.docs))
+    if holds:
+        harness.write_csv(out.parent / (out.name + "_holds.csv"), holds, HOLD_COLUMNS)
+        for h in holds:
+            harness.say("release", f"hold at mu {h['mu']:g}, {h['rpm']:g} rpm: {h['outcome']}, bed turn "
+                                   f"{h['bed_turn']:.3f} ± {h['bed_turn_hw95']:.3f} (95 %)")
     angle = carried_angle(Path(a.docs))
     if rows:
         chart(rows, out.with_suffix(".png"), angle)
