@@ -287,6 +287,15 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
     release_ramp rel_mu95_surface_a "${from[a]}" 0.95 22,23,24,25,26,27,28,29,30,31,32,33,34,35 1.76 "$scan" \
       --var wall surface
   fi
+  # the surface mesh from the other two start states too: its release against the cylinder's with
+  # the same three histories, not one ramp against three
+  for h in b c; do
+    if ready "${from[$h]}"; then
+      release_ramp "rel_mu50_surface_$h" "${from[$h]}" 0.5 "$s50" 1.76 "$scan" --var wall surface
+      release_ramp "rel_mu95_surface_$h" "${from[$h]}" 0.95 22,23,24,25,26,27,28,29,30,31,32,33,34,35 1.76 "$scan" \
+        --var wall surface
+    fi
+  done
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
     save "Drum: where the bed lets go, YADE's conventions one at a time" docs/drum/release.csv docs/drum/release.png \

@@ -68,9 +68,8 @@ RAMPS = [
     ("rel_mu50_en51_a", 0.5, "thesis, bead-drum en 0.51", "cylinder", "from rel_a 21 rpm", 1.76),
     ("rel_mu50_pournin_a", 0.5, "thesis, tangential pournin", "cylinder", "from rel_a 21 rpm", 1.76),
     ("rel_mu50_half_a", 0.5, "thesis, facet meff m/2", "cylinder", "from rel_a 21 rpm", 1.76),
-    ("rel_mu50_surface_a", 0.5, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
-    ("rel_mu95_surface_a", 0.95, "thesis", "surface mesh", "from rel_a 21 rpm", 1.76),
-]
+] + [(f"rel_mu{round(100 * mu)}_surface_{h}", mu, "thesis", "surface mesh", f"from rel_{h} 21 rpm", 1.76)
+     for mu in (0.5, 0.95) for h in ("a", "b", "c")]
 CHECK, AGAINST = "rel_L12_check", ("slip_thesis", "slip_thesis_replica")
 HOLDS = [("rel_mu50_hold", 0.5), ("rel_mu95_hold", 0.95)]  # (study, bead-drum mu): see the module note
 HOLD_COLUMNS = ["study", "mu", "rpm", "start", "simulated_s", "bed_turn", "bed_turn_hw95", "bed_turn_dof", "outcome"]
