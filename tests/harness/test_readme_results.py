@@ -36,5 +36,36 @@ class ReadmeResults(unittest.TestCase):
             self.assertIn("not current", r.stderr)
 
 
+class TimestepParagraph(unittest.TestCase):
+    """The drum-timestep sentence picks, per law, the coarsest step whose Hc and angle both agree
+    with tc/81, and says so where none does and while the reference runs."""
+
+    def rows(self, law, ratio, state, agree, cost, other_agree=True):
+        metrics = [("Hc_m", agree[0]), ("angle_deg", agree[1]), ("Hd_m", other_agree), ("bed_turn_1", True)]
+        return [{"rpm": 21, "law": law, "tc_over_dt": ratio, "state": state, "metric": m,
+                 "difference": "" if law == "plain" and ratio > 80 else 1e-5, "difference_hw95": 2e-5, "agree": ok,
+                 "power": 0.9, "wall_s_per_simulated_s": cost, "window_s": 7.4} for m, ok in metrics]
+
+    def test_coarsest_indistinguishable_step_per_law(self):
+        sys.path.insert(0, str(REPO / "tools"))
+        import readme_results
+        table = (self.rows("plain", 81.3, "running", (True, True), 5000.0) +
+                 self.rows("plain", 40, "done", (True, True), 2500.0) +
+                 self.rows("plain", 10, "done", (True, True), 1000.0, other_agree=False) +
+                 self.rows("plain", 20, "done", (False, True), 1600.0) +
+                 self.rows("exactRestitution", 5, "done", (True, False), 500.0))
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "t.csv"
+            readme_results.harness.write_csv(path, table)
+            text = " ".join(readme_results.timestep_para(path).split())
+        # tc/10 agrees on Hc and the angle (another metric's difference does not disqualify it);
+        # tc/20 does not, which does not matter once a coarser step does
+        self.assertIn("indistinguishable from tc/81 in both: the plain law's tc/10 (5.0 times less wall time);"
+                      " `exactRestitution`: none so far", text)
+        self.assertIn("1 of 2 other metrics differing, at 0.2 of tc/81's wall time", text)
+        self.assertIn("still running (7.4 s averaged): provisional", text)
+        self.assertIsNone(readme_results.timestep_para(Path(d) / "missing.csv"))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -246,8 +246,12 @@ class ExtendedChain(unittest.TestCase):
         self.assertNotIn("segment", self.run_study(ext, CHAIN))
         # a stop rule that asks for nothing more (a target, the cap reached): records only
         state = (docs / "21rpm" / "state.restart.gz").read_bytes()
-        said = self.run_study(ext, [*longer, "--target", "Hc=0.001"], "--extend")
+        said = self.run_study(ext, [*longer, "--target", "Hc=0.001"], "--extend",
+                              "--refresh", f"touch {self.tmp / 'refreshed'}", "README.md", "--refresh", "false", "x")
         self.assertNotIn("segment", said)
+        # --refresh: run after each finished speed; a failing one is reported, not fatal
+        self.assertTrue((self.tmp / "refreshed").exists())
+        self.assertIn("--refresh false: exit 1, x not refreshed", said)
         self.assertEqual((docs / "21rpm" / "state.restart.gz").read_bytes(), state)
         last = json.loads((docs / "21rpm" / "run.json").read_text())
         self.assertEqual(last["settings"]["targets"], {"Hc": 0.001})

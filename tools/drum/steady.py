@@ -643,6 +643,13 @@ class Study:
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
         written = report.write(a.name, self.docs.parent)  # the study's report, with this speed in it
+        for command, path in a.refresh:  # files generated from this table (e.g. the README's results)
+            r = subprocess.run(shlex.split(command), cwd=harness.REPO, capture_output=True, text=True)
+            if r.returncode:
+                harness.say(WHO, f"--refresh {command}: exit {r.returncode}, {path} not refreshed: "
+                                 f"{(r.stdout + r.stderr).strip()[-500:]}")
+            else:
+                written.append(harness.REPO / path)
         if a.commit:
             commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table,
                    *written)
@@ -737,6 +744,10 @@ def arguments(argv=None):
                         "time have passed since the last (default: %(default)s; 0: after every segment)")
     p.add_argument("--checkpoint-now", action="store_true",
                    help="checkpoint the speeds in progress from post/ (their last recorded segment) and stop")
+    p.add_argument("--refresh", nargs=2, action="append", default=[], metavar=("COMMAND", "FILE"),
+                   help="after each finished speed, run COMMAND (from the repository's root) and commit FILE, which "
+                        "it regenerates from the study's table, with the speed (repeatable), e.g. "
+                        "--refresh tools/readme_results.py README.md; a failure is reported, not fatal")
     p.add_argument("--dry-run", action="store_true", help="print the plan, run nothing")
     args = p.parse_args(argv)
     try:
