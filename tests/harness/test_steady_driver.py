@@ -405,6 +405,19 @@ class ObmRule(unittest.TestCase):
         self.assertEqual(steady.trajectory(plain), steady.trajectory(obm))
 
 
+class Extend(unittest.TestCase):
+    def test_a_state_that_is_not_its_records_is_not_extended(self):
+        # an interrupted write left a state other than the one run.json records: refused, not spliced
+        with tempfile.TemporaryDirectory() as d:
+            study = steady.Study(steady.arguments(["--name", "t", "--docs", d, "--var", "dt", "2e-5", "--extend"]))
+            study.work = Path(d) / "post"
+            out = Path(d) / "t" / "21rpm"
+            out.mkdir(parents=True)
+            (out / "state.restart.gz").write_bytes(b"another state")
+            with self.assertRaisesRegex(chain.PlanError, "not the end state its run.json records"):
+                study.from_committed(21, {"state_sha256": "abc", "segments": 2}, out / "state.restart.gz", "s")
+
+
 class Pack(unittest.TestCase):
     def test_the_same_state_packs_to_the_same_bytes(self):
         # through differently named temporary files, seconds apart: git must see one object

@@ -242,13 +242,13 @@ class ExtendedChain(unittest.TestCase):
         self.assertEqual(after[28]["segments"], 4)
         self.assertEqual(len(after[28]["loops"]), 4)
         # done: the same command runs nothing, and so does the chain's first (its series is in it)
-        self.assertNotIn("segment", self.run_study(ext, longer, "--extend"))
-        self.assertNotIn("segment", self.run_study(ext, CHAIN))
+        self.assertNotIn("rpm, segment", self.run_study(ext, longer, "--extend"))
+        self.assertNotIn("rpm, segment", self.run_study(ext, CHAIN))
         # a stop rule that asks for nothing more (a target, the cap reached): records only
         state = (docs / "21rpm" / "state.restart.gz").read_bytes()
         said = self.run_study(ext, [*longer, "--target", "Hc=0.001"], "--extend",
                               "--refresh", f"touch {self.tmp / 'refreshed'}", "README.md", "--refresh", "false", "x")
-        self.assertNotIn("segment", said)
+        self.assertNotIn("rpm, segment", said)
         # --refresh: run after each finished speed; a failing one is reported, not fatal
         self.assertTrue((self.tmp / "refreshed").exists())
         self.assertIn("--refresh false: exit 1, x not refreshed", said)
@@ -257,6 +257,9 @@ class ExtendedChain(unittest.TestCase):
         self.assertEqual(last["settings"]["targets"], {"Hc": 0.001})
         self.assertEqual((last["outcome"], last["state_sha256"], last["segments"]), ("capped", after[21]["state_sha256"], 3))
         self.assertEqual(last["earlier_states_sha256"], [before[21]["state_sha256"]])
+        # decided again, nothing run: the record keeps where and when it ran
+        self.assertEqual((last["date"], last["machine"]), (after[21]["date"], after[21]["machine"]))
+        self.assertIn("decided_again", last)
 
 
 if __name__ == "__main__":

@@ -233,13 +233,21 @@ def markdown(name, rows, reached=(), slow=float("nan")):
         v, e = float(r[col]) * scale, float(r[se]) * scale
         return f"{v:.{digits}f} ± {e:.{digits}f}" if math.isfinite(e) else f"{v:.{digits}f}"
 
+    obm = [r["rpm"] for r in rows if not math.isfinite(float(r.get("batches", math.nan)))]
+    revs = [r["rpm"] for r in rows if r["rpm"] not in obm]
+
+    def at(speeds):
+        return "" if not obm or not revs else " at " + ", ".join(f"{x:g}" for x in speeds) + " rpm"
+    bars = ([f"averages over whole revolutions after the steady start, ± their standard error by batch means (one "
+             f"batch per revolution; the batches are the last whole revolutions from the steady start to the speed's "
+             f"end, the part before them, less than a revolution, left out){at(revs)}"] if revs else []) + \
+           ([f"averages over the whole steady window, ± the standard error of `tools/drum/estimator.py` (overlapping "
+             f"batch means, batch length from the series; the 95 % half-widths and effective degrees of freedom are in "
+             f"the table's `_hw95_` and `_dof` columns){at(obm)}"] if obm else [])
     lines = [f"# Drum study `{name}`", "", answer(rows), "",
              f"Written by `tools/drum/report.py --name {name}` from `docs/drum/{name}.csv` "
-             "(one row per finished speed; `done`: the stop rule's target reached, else capped). "
-             "Averages over whole revolutions after the steady start, ± their standard error by "
-             "batch means (one batch per revolution). `averaged` and `revolutions`: from the steady start "
-             "to the speed's end; the batches are the last whole revolutions in that span (the part "
-             "before them, less than a revolution, is left out).", "",
+             "(one row per finished speed; `done`: the stop rule's target reached, else capped): "
+             + "; ".join(bars) + ". `averaged` and `revolutions`: from the steady start to the speed's end.", "",
              f"![metrics against speed]({name}.png)", "",
              "| rpm | Hh [mm] | Hd [mm] | Hc [mm] | angle [deg] | drum force [mN] | settle [s] | averaged [s] "
              "| revolutions | done |",

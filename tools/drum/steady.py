@@ -495,24 +495,29 @@ class Study:
     def from_committed(self, rpm, base, start, start_sha):
         """A committed speed to be extended (`base`: its run.json) as a progress record in post/:
         its end state as its last segment's, its series as the metrics cache (each snapshot's step
-        from its time; the values to the series' 10 digits) and its counts; as yet decided under
-        its old rule."""
+        from its time; the values to the series' 10 digits) and its counts, decided under this
+        rule; `extends_sha256` names the end state it grows from (a record of another extension
+        is not resumed)."""
+        out = self.docs / f"{rpm}rpm"
+        if sha256(out / "state.restart.gz") != base["state_sha256"]:
+            raise chain.PlanError(f"{out / 'state.restart.gz'} is not the end state its run.json records: an "
+                                  "interrupted write? Restore both from git before extending the speed")
         self.forget(rpm)
         self.work.mkdir(parents=True, exist_ok=True)
-        out = self.docs / f"{rpm}rpm"
         state = self.work / f"{rpm}rpm_seg{base['segments']}.restart"
         unpack(out / "state.restart.gz", state)
         header, *lines = [line for line in (out / "series_metrics.csv").read_text().splitlines() if line.strip()]
         steps = [round(float(line.split(",", 1)[0]) / self.dt) for line in lines]
         with harness.whole(self.cache(rpm)) as tmp:
             tmp.write_text("".join(f"{k},{line}\n" for k, line in zip(["step", *steps], [header, *lines])))
-        done = {"settings": base["settings"], "start": str(start), "start_sha256": start_sha,
-                "segments": base["segments"], "simulated_s": base["simulated_s"], "cpu_s": base["cpu_s"],
-                "beads": base["beads"], "loops": list(base.get("loops", [])), "last_step": max(steps),
-                "state": str(state), "outcome": base["outcome"]}
+        outcome, _, _ = self.decide(rpm, base["simulated_s"])
+        done = {"settings": self.settings, "start": str(start), "start_sha256": start_sha,
+                "extends_sha256": base["state_sha256"], "segments": base["segments"],
+                "simulated_s": base["simulated_s"], "cpu_s": base["cpu_s"], "beads": base["beads"],
+                "loops": list(base.get("loops", [])), "last_step": max(steps), "state": str(state), "outcome": outcome}
         harness.write_json(self.work / f"{rpm}rpm_progress.json", done)
-        harness.say(WHO, f"{rpm} rpm: extending the committed speed ({base['segments']} segments, "
-                         f"{base['simulated_s']:g} s simulated, {base['outcome']})")
+        harness.say(WHO, f"{rpm} rpm: the committed speed ({base['segments']} segments, {base['simulated_s']:g} s "
+                         f"simulated, {base['outcome']}) decided again under this rule: {outcome}")
         return done
 
     def run_speed(self, rpm, start, start_sha, base=None):
@@ -532,8 +537,11 @@ class Study:
             harness.say(WHO, f"{rpm} rpm: the segments in {self.work} are of other settings or another start "
                              "state: not resumed")
             done = None
+        if base is not None and done and done.get("extends_sha256") != base["state_sha256"]:
+            done = None  # another extension's, or a record from before the speed was committed
         done = self.restore(rpm, start, start_sha, done)
-        if base is not None and (not done or done["segments"] < base["segments"]):
+        if base is not None and (not done or done["segments"] < base["segments"]
+                                 or done.get("extends_sha256") != base["state_sha256"]):
             done = self.from_committed(rpm, base, start, start_sha)
         if not done:
             self.forget(rpm)
@@ -636,25 +644,33 @@ class Study:
                   "state_sha256": sha256(out / "state.restart.gz"),
                   "command": self.command, "date": time.strftime("%Y-%m-%d"), "machine": harness.machine()}
         if base is not None:
+            if done["segments"] == base["segments"]:  # decided again, nothing run: where it ran stays
+                record.update(date=base.get("date"), machine=base.get("machine"),
+                              decided_again=time.strftime("%Y-%m-%d"))
             if earlier := sorted(states_of(base) - {record["state_sha256"]}):
                 record["earlier_states_sha256"] = earlier  # where its successors may have started
             settings = [x for x in base.get("earlier_settings", []) + [base["settings"]] if x != self.settings]
             record["earlier_settings"] = [x for k, x in enumerate(settings) if x not in settings[:k]]
         harness.write_json(out / "run.json", record)
         shutil.rmtree(self.partial(rpm), ignore_errors=True)  # done: the checkpoint's removal is committed below
-        written = report.write(a.name, self.docs.parent)  # the study's report, with this speed in it
-        for command, path in a.refresh:  # files generated from this table (e.g. the README's results)
-            r = subprocess.run(shlex.split(command), cwd=harness.REPO, capture_output=True, text=True)
-            if r.returncode:
-                harness.say(WHO, f"--refresh {command}: exit {r.returncode}, {path} not refreshed: "
-                                 f"{(r.stdout + r.stderr).strip()[-500:]}")
-            else:
-                written.append(harness.REPO / path)
+        written = report.write(a.name, self.docs.parent) + self.refreshed()  # with this speed in them
         if a.commit:
             commit(f"Drum study {a.name}: {rpm} rpm ({outcome}, {done['simulated_s']:g} s simulated)", out, table,
                    *written)
         harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
                          f"{' and committed' if a.commit else ''}")
+
+    def refreshed(self):
+        """--refresh: runs each command; returns the files of those that succeeded."""
+        files = []
+        for command, path in self.args.refresh:  # files generated from the table (e.g. the README's results)
+            r = subprocess.run(shlex.split(command), cwd=harness.REPO, capture_output=True, text=True)
+            if r.returncode:
+                harness.say(WHO, f"--refresh {command}: exit {r.returncode}, {path} not refreshed: "
+                                 f"{(r.stdout + r.stderr).strip()[-500:]}")
+            else:
+                files.append(harness.REPO / path)
+        return files
 
     def main(self):
         a = self.args
@@ -677,7 +693,7 @@ class Study:
                                     capture_output=True, text=True).stdout if paths else ""
             if status.strip():  # the report too: an interruption before finish() wrote it would leave it stale
                 commit(f"Drum study {a.name}: results written before an interruption", *paths,
-                       *report.write(a.name, self.docs.parent))
+                       *report.write(a.name, self.docs.parent), *self.refreshed())
         previous = None
         for rpm, done in steps:
             if done is not True:
