@@ -76,18 +76,19 @@ def within(err):
     return "within 0.0001 %" if e < 1e-4 else f"error {e:.2g} %"
 
 
-LAWS = {"plain": "the plain law", "exactRestitution": "`exactRestitution`", "exactCollision": "`exactCollision`"}
+LAWS = {"plain": "nominal", "exactRestitution": "`exactRestitution`", "exactCollision": "`exactCollision`"}
 
 
-def signed(x, hw, scale, unit):
-    return f"{scale * x:+.2f} ± {scale * hw:.2f}{unit}".replace("-", "−")
+def signed(x, hw, scale):
+    return f"{scale * x:+.2f} ± {scale * hw:.2f}".replace("-", "−")
 
 
 def timestep_para(path=REPO / "benchmarks/results/drum_timestep.csv", rpm="21"):
-    """The drum's answer per law and timestep against the plain law at tc/81, for Hc and the angle
-    (the metrics the runs' length was set for: a 0.1 mm / 0.1° difference found with 80 % power),
-    the other metrics' disagreements counted, and the wall time against tc/81's; then the coarsest
-    step per law indistinguishable on both. None before a rung has a difference."""
+    """The drum's answer per law and timestep against the nominal law at tc/81: Hc and the angle
+    (the metrics the runs' length was set for: a 0.1 mm / 0.1° difference found with 80 % power)
+    with their 95 % intervals, the other metrics' disagreements counted, the wall time against
+    tc/81's; then the coarsest step per law indistinguishable on both. None before a rung has a
+    difference."""
     if not path.exists():
         return None
     table = [r for r in rows(path) if r["rpm"] == rpm]
@@ -99,38 +100,41 @@ def timestep_para(path=REPO / "benchmarks/results/drum_timestep.csv", rpm="21"):
     if not ref or not rungs:
         return None
     ref_cost = float(ref[0]["wall_s_per_simulated_s"])
-    parts, coarsest, others = [], {}, 0
-    for k, ((law, ratio), m) in enumerate(sorted(rungs.items(), key=lambda kv: (list(LAWS).index(kv[0][0]),
-                                                                                   -kv[0][1]))):
+    lines, coarsest, power, others = [], {}, [], 0
+    for (law, ratio), m in sorted(rungs.items(), key=lambda kv: (list(LAWS).index(kv[0][0]), -kv[0][1])):
         hc, angle = m["Hc_m"], m["angle_deg"]
-        same = hc["agree"] == "True" and angle["agree"] == "True"
         rest = [r for key, r in m.items() if key not in ("Hc_m", "angle_deg")]
         others = len(rest)
         cost = float(hc["wall_s_per_simulated_s"]) / ref_cost
+        power += [float(hc["power"]), float(angle["power"])]
         running = "" if hc["state"] == "done" else " (running)"
-        parts.append(f"{LAWS[law]} at tc/{ratio:g}{running} {signed(float(hc['difference']), float(hc['difference_hw95']), 1e3, ' mm')}"
-                     f" and {signed(float(angle['difference']), float(angle['difference_hw95']), 1.0, '°')} (power "
-                     f"{float(hc['power']):.2f} and {float(angle['power']):.2f}{' to find 0.1 mm and 0.1°' if not k else ''}), "
-                     f"{sum(r['agree'] != 'True' for r in rest)} of {len(rest)} other metrics differing, at "
-                     f"{cost:.2g} of tc/81's wall time")
-        if same and ratio < coarsest.get(law, (math.inf,))[0]:
+        lines.append(f"| {LAWS[law]}, tc/{ratio:g}{running} | {signed(float(hc['difference']), float(hc['difference_hw95']), 1e3)} | "
+                     f"{signed(float(angle['difference']), float(angle['difference_hw95']), 1.0)} | "
+                     f"{sum(r['agree'] != 'True' for r in rest)} of {len(rest)} | {cost:.2g} |")
+        if hc["agree"] == "True" and angle["agree"] == "True" and ratio < coarsest.get(law, (math.inf,))[0]:
             coarsest[law] = (ratio, cost)
-    best = "; ".join([f"{LAWS[law]}'s tc/{ratio:g} ({1 / cost:.1f} times less wall time)"
-                      for law, (ratio, cost) in coarsest.items()] +
-                     [f"{LAWS[law]}: none so far" for law in LAWS if any(k[0] == law for k in rungs) and law not in coarsest])
+    best = "; ".join([f"{LAWS[law]} tc/{ratio:g}, at {cost:.2g} of its wall time" for law, (ratio, cost) in coarsest.items()] +
+                     [f"{LAWS[law]}: none so far (run: " + ", ".join(f"tc/{k[1]:g}" for k in sorted(rungs) if k[0] == law)
+                      + ")" for law in LAWS if any(k[0] == law for k in rungs) and law not in coarsest])
     status = ("" if ref[0]["state"] == "done" else
-              f" The reference is still running ({float(ref[0]['window_s']):.1f} s averaged): provisional.")
-    return para(f"**The drum's answer against the timestep** ({rpm} rpm, bed carried; against the plain law at the "
-                "thesis' tc/81, same scene and machine; 95 % intervals; [method](docs/benchmarks.md#the-drums-answer-"
-                "against-the-timestep)), the difference in Hc and in the angle: " + "; ".join(parts) + ". The coarsest step "
-                f"indistinguishable from tc/81 in both: {best} (of {others} metrics, {0.05 * others:.1f} differ at "
-                f"95 % by chance).{status}")
+              f" Provisional: tc/81 is still running ({float(ref[0]['window_s']):.1f} s of steady flow averaged).")
+    return "\n".join([
+        para(f"**The drum's answer against the timestep** at {rpm} rpm (bed carried): each setting's difference from "
+             "the nominal law at the thesis' tc/81, same scene and machine, with 95 % intervals; the runs find a 0.1 mm "
+             f"or 0.1° difference with probability {min(power):.2f}–{max(power):.2f} "
+             f"([method](docs/benchmarks.md#the-drums-answer-against-the-timestep)).{status}"),
+        "",
+        "| setting | Hc [mm] | angle [°] | other metrics differing | wall time against tc/81 |",
+        "|---|---|---|---|---|",
+        *lines,
+        "",
+        para(f"The coarsest step indistinguishable from tc/81 in Hc and the angle: {best}. By chance alone "
+             f"{0.05 * others:.1f} of {others} metrics differ at 95\u00a0%.")])
 
 
 def block():
     study = rows(REPO / "docs/drum/study_thesis.csv")
     hw = [1e3 * float(r["Hc_hw95_m"]) for r in study]
-    dof = [float(d) for r in study for k, d in r.items() if k.endswith("_dof")]
     revolutions = [float(r["revolutions"]) for r in study]
     thesis, yade = (onsets(names) for names in RAMPS)
     acc = {(float(r["tc_over_dt"]), r["exact"]): r for r in rows(REPO / "benchmarks/results/accuracy_cost.csv")}
@@ -142,38 +146,35 @@ def block():
     timestep = timestep_para()
     return "\n".join([
         BEGIN,
-        para(f"**Collisions exact on average at a coarse step, and one by one with `exactCollision`.** With a "
-        f"timestep of a fifth of the contact duration (dt = tc/5) and `exactRestitution on`, the setting for flows, "
-        f"colliding beads part with the requested restitution coefficient en on average over the start phase (where "
-        f"within a timestep the contact begins; {within(exact5['restitution_err'])}), after a contact lasting tc. A "
-        "single collision still scatters with its start phase; `exactCollision on` removes that at a higher cost per "
-        "contact: each collision then gives what the continuous law gives within 0.5 % at tc/10 and 1 % at tc/5, on "
-        f"walls and between beads, except grazing or fast-spinning pairs ({len(missed)} of {len(draws):,} random pair "
-        f"collisions miss, by up to {100 * worst:.0f} %; [limitations](docs/limitations.md)). "
-        "([Which setting](docs/guide.md#which-exactness-nominal-exactrestitution-or-exactcollision).) The nominal law "
-        "(both settings off) "
-        f"needs tc/40 to come within 0.5 % of en on average ({100 * float(nominal40['restitution_err']):+.2f} %), at "
-        f"{cost:.1f} times the CPU time on a 6 mm slab of the drum ({16336:,} beads), and still misses by "
-        f"{100 * float(nominal81['restitution_err']):+.2f} % at the thesis' tc/81 "
+        para("**Collisions exact on average at dt = tc/5, and one by one with `exactCollision`.** With "
+        "`exactRestitution on`, colliding beads part with the requested en on average over start phases "
+        f"({within(exact5['restitution_err'])}), after a contact lasting tc. A single collision still depends on its "
+        "start phase; `exactCollision on` removes that at a higher cost per contact: each collision then matches the "
+        "continuous law within 0.5 % at tc/10 and 1 % at tc/5, on walls and between beads, except grazing or "
+        f"fast-spinning pairs ({len(missed)} of {len(draws):,} random pair collisions miss, by up to {100 * worst:.0f} %; "
+        "[limitations](docs/limitations.md); [which setting](docs/guide.md#which-exactness-nominal-exactrestitution-or-"
+        "exactcollision)). The nominal law (both settings off) needs tc/40 to come within 0.5 % of en on average "
+        f"({100 * float(nominal40['restitution_err']):+.2f} %), {cost:.1f} times the CPU time of `exactRestitution` at "
+        f"tc/5 on a 6 mm slab of the drum ({16336:,} beads), and still misses by "
+        f"{100 * float(nominal81['restitution_err']):+.2f} % at the thesis' timestep, tc/81 "
         "([benchmarks](docs/benchmarks.md#accuracy-against-cost))."),
         *(["", timestep] if timestep else []),
         "",
         para(f"**The drum's nine speeds** with the thesis' materials (Table 3.1), averaged over "
         f"{min(revolutions):.1f}–{max(revolutions):.1f} revolutions in steady flow (95 % half-widths of Hc "
-        f"{min(hw):.2f}–{max(hw):.2f} mm, at {min(dof):.1f}–{max(dof):.1f} effective degrees of freedom over the "
-        "metrics; [the study](docs/drum/study_thesis.md), [error bars](docs/drum/error_bars.md)). Heights are above "
-        "the drum's "
-        "axis (negative: below it); the bed turn is the bed's rotation over the drum's (1: the drum carries the bed; "
-        "about 0.5: the bed rides on rolling beads):"),
+        f"{min(hw):.2f}–{max(hw):.2f} mm; [the study](docs/drum/study_thesis.md), [error bars](docs/drum/error_bars.md)). "
+        "Heights are above the drum's axis (negative: below it); the bed turn is the angular velocity of the beads "
+        "near the drum's lowest point divided by the drum's (1: the drum carries the bed; about 0.5: the bed rides on "
+        "rolling beads):"),
         "",
         speeds_table(study),
         "",
         para(f"**Where the bed lets go of the drum.** Raising the speed by one rpm every 1.5 s from a carried 21 rpm "
         f"bed, the bed lets go at {speeds(thesis)} rpm in two independent runs with the thesis' materials (bead–drum "
         f"friction 0.95), and at {speeds(yade)} rpm with YADE 1.12's settings (bead–drum friction 0.5, wall contacts "
-        "with half the bead's mass, no attractive force at the end of a contact; the nominal law at tc/10), "
-        "bracketing the thesis' drop at 27–28 rpm. With two histories a set the difference is suggestive, not "
-        "established ([the slip test](docs/drum/slip_test.md))."),
+        "with half the bead's mass, no attractive force at the end of a contact; the nominal law at tc/10): the "
+        "second pair brackets the thesis' drop at 27–28 rpm, the first lies above it. With two runs per setting the "
+        "difference is suggestive, not established ([the slip test](docs/drum/slip_test.md))."),
         END])
 
 

@@ -60,10 +60,10 @@ class TimestepParagraph(unittest.TestCase):
             text = " ".join(readme_results.timestep_para(path).split())
         # tc/10 agrees on Hc and the angle (another metric's difference does not disqualify it);
         # tc/20 does not, which does not matter once a coarser step does
-        self.assertIn("indistinguishable from tc/81 in both: the plain law's tc/10 (5.0 times less wall time);"
-                      " `exactRestitution`: none so far", text)
-        self.assertIn("1 of 2 other metrics differing, at 0.2 of tc/81's wall time", text)
-        self.assertIn("still running (7.4 s averaged): provisional", text)
+        self.assertIn("indistinguishable from tc/81 in Hc and the angle: nominal tc/10, at 0.2 of its wall time;"
+                      " `exactRestitution`: none so far (run: tc/5)", text)
+        self.assertIn("| nominal, tc/10 | +0.01 ± 0.02 | +0.00 ± 0.00 | 1 of 2 | 0.2 |", text)
+        self.assertIn("Provisional: tc/81 is still running (7.4 s", text)
         self.assertIsNone(readme_results.timestep_para(Path(d) / "missing.csv"))
 
 
