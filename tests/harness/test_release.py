@@ -93,6 +93,38 @@ class Release(unittest.TestCase):
             harness.write_csv(docs / "flicker" / "30rpm" / "series_metrics.csv", rows)
             self.assertIn("on and off", release.hold_outcome(release.slip.ramp_series(docs, "flicker"), 30))
 
+    def test_the_answer_page(self):
+        def row(study, mu, conventions="thesis", wall="cylinder", release=30.0):
+            return {"study": study, "mu": mu, "conventions": conventions, "wall": wall, "seconds_per_rpm": 1.76,
+                    "release_rpm": release, "detected": "carried to 31 rpm (the ramp's end): releases above it"}
+        # releases 25 + 10 mu with a spread of +-0.2 across the three histories
+        rows = [row(f"rel_mu{round(100 * mu)}_{h}", mu, release=25 + 10 * mu + dx)
+                for mu in release.SCAN_MUS for h, dx in zip("abc", (-0.2, 0.0, 0.2))]
+        k, hw, n = release.slope(release.scan_points(rows))
+        self.assertAlmostEqual(k, 10.0, places=9)
+        self.assertEqual(n, 12)
+        # one convention far outside the spread at mu 0.5 (30 +- 0.2), one inside, one never released
+        rows += [row("rel_mu50_half_a", 0.5, "thesis, facet meff m/2", release=27.0),
+                 row("rel_mu50_cut_a", 0.5, "thesis, no attraction", release=30.1),
+                 row("rel_mu50_en51_a", 0.5, "thesis, bead-drum en 0.51", release=math.nan)]
+        rows += [row(f"rel_mu50_surface_{h}", 0.5, wall="surface mesh", release=29.0 + dx)
+                 for h, dx in zip("abc", (-0.2, 0.0, 0.2))]
+        text = " ".join(release.page(rows).split())
+        self.assertIn("the bead-drum friction moves the release: +1.00 ± ", text)
+        self.assertIn("from 30.0 ± 0.5 rpm at mu 0.5 to 34.5 ± 0.5 at 0.95", text)
+        # the prediction interval for one more history: t(2) 0.2 sqrt(1 + 1/3) = 0.99
+        self.assertIn("no attraction: 30.10 rpm, +0.10 from the scan's mean, within its ± 0.99", text)
+        self.assertIn("bead-drum en 0.51: never let go on its ramp, so above 32 rpm, outside the scan's 30.00 ± 0.99", text)
+        self.assertIn("bead-drum en 0.51 and facet meff m/2 move the release beyond the spread of three histories", text)
+        self.assertIn("at mu 0.5 -1.00 ± 0.", text.replace("−", "-"))
+        self.assertIn("Still to run: 5 ramps", text)  # pournin, the mu 0.95 surface ramps and the 12 mm check
+        # nothing run yet: says so instead of an answer
+        self.assertIn("has not run far enough", release.page([]))
+        # Welch: equal spreads, 3 a side: t at 4 dof times sqrt(2 var / 3)
+        d, hw = release.welch([1.0, 2.0, 3.0], [2.0, 3.0, 4.0])
+        self.assertAlmostEqual(d, -1.0)
+        self.assertAlmostEqual(hw, float(release.stats.t.ppf(0.975, 4)) * math.sqrt(2 / 3), places=9)
+
     def test_the_rigid_bed_estimate(self):
         # the segment's area and centroid against a numerical integration over the drum's section
         eps, s = release.segment(0.40)

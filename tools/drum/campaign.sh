@@ -241,7 +241,7 @@ if ready docs/drum/rel_L12_a/21rpm/state.restart.gz; then
 fi
 if [[ ${#now[@]} -eq 0 ]]; then
   "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
-  save "Drum: where the bed lets go, ramp by ramp" docs/drum/release.csv docs/drum/release.png
+  save "Drum: where the bed lets go, ramp by ramp" docs/drum/release.csv docs/drum/release.png docs/drum/release.md
 fi
 if scan=$("$py" tools/drum/release.py --scan-period); then
   if [[ "$scan" == 0.012 ]]; then first=rel_L12_a; else first=study_thesis; fi
@@ -263,7 +263,7 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
     done
     if [[ ${#now[@]} -eq 0 ]]; then
       "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
-      save "Drum: where the bed lets go, bead-drum mu up to 0.$tag" docs/drum/release.csv docs/drum/release.png
+      save "Drum: where the bed lets go, bead-drum mu up to 0.$tag" docs/drum/release.csv docs/drum/release.png docs/drum/release.md
     fi
   done
   # Holds (tools/drum/release.py, module note): does a bed held steady at one speed let go where the
@@ -279,7 +279,7 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
   done
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
-    save "Drum: where a bed held steady lets go" docs/drum/release.csv docs/drum/release.png docs/drum/release_holds.csv
+    save "Drum: where a bed held steady lets go" docs/drum/release.csv docs/drum/release.png docs/drum/release.md docs/drum/release_holds.csv
   fi
   # YADE's other conventions one at a time at mu 0.5 (one history, a's; beside rel_mu50_a..c): no
   # attraction, en 0.51, the tangential law the thesis prints (pournin: its contact histories start
@@ -307,7 +307,7 @@ if scan=$("$py" tools/drum/release.py --scan-period); then
   done
   if [[ ${#now[@]} -eq 0 ]]; then
     "$py" tools/drum/release.py || echo "campaign: the release table failed (above)"
-    save "Drum: where the bed lets go, YADE's conventions one at a time" docs/drum/release.csv docs/drum/release.png \
+    save "Drum: where the bed lets go, YADE's conventions one at a time" docs/drum/release.csv docs/drum/release.png docs/drum/release.md \
       docs/drum/release_holds.csv
   fi
 fi

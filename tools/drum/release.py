@@ -29,7 +29,13 @@ state one at the slowest speed none of them reached carried (`hold_speeds`; `--h
 both and the start state for the campaign). Each held speed's outcome, its bed turn with its 95 %
 interval, goes to docs/drum/release_holds.csv.
 
-  tools/drum/release.py                  # docs/drum/release.csv, release.png, release_holds.csv
+The answer, what sets the release speed, goes to docs/drum/release.md (`page`): the release
+against the bead-drum friction across the scan's histories (the least-squares slope with its 95 %
+interval), each of YADE's other conventions at mu 0.5 against the scan's 95 % prediction interval
+for one more history at that mu, the surface mesh against the cylinder with the same start states
+(Welch), the holds, and what is still to run.
+
+  tools/drum/release.py                  # docs/drum/release.csv, .png, .md, release_holds.csv
   tools/drum/release.py --hold 0.95      # BELOW ABOVE START-STATE of that hold, or exit 1
 
 Needs: python3-numpy, python3-scipy, python3-matplotlib.
@@ -37,6 +43,7 @@ Needs: python3-numpy, python3-scipy, python3-matplotlib.
 
 import argparse
 import math
+import re
 import statistics
 import sys
 from pathlib import Path
@@ -280,6 +287,139 @@ def read_holds(docs, holds=HOLDS):
     return rows
 
 
+SCAN = ("thesis", "cylinder", 1.76)  # (conventions, wall, seconds per rpm) of the friction scan
+SCAN_MUS = (0.5, 0.65, 0.8, 0.95)
+
+
+def scan_points(rows):
+    """[(mu, release rpm)] of the friction scan's histories that let go."""
+    return [(r["mu"], r["release_rpm"]) for r in rows if (r["conventions"], r["wall"], r["seconds_per_rpm"]) == SCAN
+            and r["study"] in {n for mu in SCAN_MUS for n in scan_histories(mu)} and math.isfinite(r["release_rpm"])]
+
+
+def slope(points, confidence=0.95):
+    """(rpm per unit mu, its 95 % half-width, n) of the least-squares line through the scan's
+    histories; None with fewer than 3 points or one mu."""
+    if len(points) < 3 or len({m for m, _ in points}) < 2:
+        return None
+    fit = stats.linregress([m for m, _ in points], [x for _, x in points])
+    return fit.slope, float(stats.t.ppf(0.5 + confidence / 2.0, len(points) - 2)) * fit.stderr, len(points)
+
+
+def prediction(values, confidence=0.95):
+    """(mean, half-width) of the interval that holds one more history's release with this
+    confidence: t(n - 1) sd sqrt(1 + 1/n); nan half-width below 2 histories."""
+    n = len(values)
+    if n < 2:
+        return (statistics.fmean(values) if values else math.nan), math.nan
+    return (statistics.fmean(values),
+            float(stats.t.ppf(0.5 + confidence / 2.0, n - 1)) * statistics.stdev(values) * math.sqrt(1.0 + 1.0 / n))
+
+
+def welch(a, b, confidence=0.95):
+    """(mean a - mean b, its 95 % half-width) by Welch's t with Satterthwaite's dof; nan with fewer
+    than 2 a side."""
+    if len(a) < 2 or len(b) < 2:
+        return (statistics.fmean(a) - statistics.fmean(b) if a and b else math.nan), math.nan
+    va, vb = statistics.variance(a) / len(a), statistics.variance(b) / len(b)
+    if va + vb == 0:
+        return statistics.fmean(a) - statistics.fmean(b), 0.0
+    dof = (va + vb) ** 2 / (va ** 2 / (len(a) - 1) + vb ** 2 / (len(b) - 1))
+    return statistics.fmean(a) - statistics.fmean(b), float(stats.t.ppf(0.5 + confidence / 2.0, dof)) * math.sqrt(va + vb)
+
+
+def page(rows, holds=(), angle=None):
+    """docs/drum/release.md: the answer first, in plain words, then the evidence."""
+    scan = {mu: [x for m, x in scan_points(rows) if m == mu] for mu in SCAN_MUS}
+    ran = {r["study"] for r in rows}
+    fit = slope(scan_points(rows))
+    answer, evidence = [], []
+    if fit:
+        k, hw, n = fit
+        moves = abs(k) > hw
+        ends = [(mu, *interval(scan[mu])) for mu in (SCAN_MUS[0], SCAN_MUS[-1]) if len(scan[mu]) >= 2]
+        span = (f", from {ends[0][1]:.1f} ± {ends[0][2]:.1f} rpm at mu {ends[0][0]:g} to {ends[1][1]:.1f} ± "
+                f"{ends[1][2]:.1f} at {ends[1][0]:g}" if len(ends) == 2 else "")
+        answer.append(f"With the thesis' table otherwise, the bead-drum friction {'moves' if moves else 'does not measurably move'} "
+                      f"the release: {0.1 * k:+.2f} ± {0.1 * hw:.2f} rpm per 0.1 of friction (95 %, least squares over "
+                      f"{n} ramps at 1.76 s per rpm{span})")
+    else:
+        answer.append("The friction scan has not run far enough to say how the bead-drum friction moves the release")
+    evidence += ["| bead-drum mu | histories | release [rpm], mean ± 95 % | each history [rpm] | Froude number at the mean |",
+                 "|---|---|---|---|---|"]
+    for mu, values in scan.items():
+        mean, hw = interval(values)
+        evidence.append(f"| {mu:g} | {len(values)} of 3 | " + (f"{mean:.2f} ± {hw:.2f}" if values else "–") + " | "
+                        + (", ".join(f"{x:.2f}" for x in values) or "–") + " | "
+                        + (f"{froude(mean):.3f}" if values else "–") + " |")
+    base, base_hw = prediction(scan[0.5])
+    one_at_a_time = []
+    for study, _, conventions, _, _, _ in RAMPS:
+        if study.startswith("rel_mu50_") and study[len("rel_mu50_"):-2] in ("cut", "en51", "pournin", "half"):
+            r = next((x for x in rows if x["study"] == study), None)
+            if r is None:
+                continue
+            what = conventions.split(", ", 1)[1]
+            if not math.isfinite(r["release_rpm"]):
+                end = re.search(r"carried to ([0-9.]+) rpm", r["detected"])
+                above = float(end.group(1)) + 1.0 if end else math.nan  # the ramp's end on its clock
+                beyond = math.isfinite(base_hw) and above - base > base_hw
+                one_at_a_time.append(f"{what}: never let go on its ramp, so above {above:g} rpm"
+                                     + (f", {'outside' if beyond else 'not yet outside'} the scan's {base:.2f} ± {base_hw:.2f}"
+                                        if math.isfinite(base_hw) else ""))
+            elif math.isfinite(base_hw):
+                outside = abs(r["release_rpm"] - base) > base_hw
+                one_at_a_time.append(f"{what}: {r['release_rpm']:.2f} rpm, {r['release_rpm'] - base:+.2f} from the "
+                                     f"scan's mean, {'outside' if outside else 'within'} its ± {base_hw:.2f}")
+            else:
+                one_at_a_time.append(f"{what}: {r['release_rpm']:.2f} rpm (the scan at mu 0.5 not yet run)")
+    if one_at_a_time:
+        moved = [x.split(":")[0] for x in one_at_a_time if "outside" in x]
+        answer.append("of YADE's other conventions, one at a time at mu 0.5 (one history each), "
+                      + (" and ".join([", ".join(moved[:-1]), moved[-1]] if len(moved) > 1 else moved) + " move"
+                         + ("s" if len(moved) == 1 else "") + " the release beyond the "
+                         "spread of three histories" if moved else "none moves the release beyond the spread of three "
+                         "histories"))
+        evidence += ["", "YADE's other conventions one at a time at mu 0.5, from the first start state, against the "
+                     "scan at mu 0.5 (95 % prediction interval for one more history: mean ± t sd sqrt(1 + 1/n)):", ""]
+        evidence += [f"- {x}" for x in one_at_a_time]
+    walls = []
+    for mu in (0.5, 0.95):
+        mesh = [r["release_rpm"] for r in rows if r["study"] in (f"rel_mu{round(100 * mu)}_surface_{h}" for h in "abc")
+                and math.isfinite(r["release_rpm"])]
+        if mesh and scan[mu]:
+            d, hw = welch(mesh, scan[mu])
+            walls.append((mu, d, hw, len(mesh), len(scan[mu])))
+    if walls:
+        answer.append("the surface-velocity mesh (a bead's tangential spring restarts at every facet) against the "
+                      "primitive cylinder: " + "; ".join(
+                          f"at mu {mu:g} {d:+.2f}" + (f" ± {hw:.2f} rpm" if math.isfinite(hw) else " rpm (too few histories "
+                                                       "for an interval)") for mu, d, hw, _, _ in walls))
+        evidence += ["", "The wall as YADE saw it, the surface-velocity mesh minus the primitive cylinder, from the same "
+                     "start states (Welch, 95 %):", ""]
+        evidence += [f"- mu {mu:g}: {d:+.2f}" + (f" ± {hw:.2f}" if math.isfinite(hw) else "") +
+                     f" rpm ({n} and {m} histories)" for mu, d, hw, n, m in walls]
+    if holds:
+        evidence += ["", "Held steady (`release_holds.csv`):", ""]
+        evidence += [f"- mu {h['mu']:g}, {h['rpm']:g} rpm ({h['start']}, {h['simulated_s']:g} s): {h['outcome']}, bed "
+                     f"turn {h['bed_turn']:.3f} ± {h['bed_turn_hw95']:.3f}" for h in holds]
+    todo = [n for n, *_ in RAMPS if n.startswith("rel_") and n not in ran]
+    if angle is not None:
+        evidence += ["", "A rigid bed at its carried angle, held by Coulomb friction at the wall, needs at least "
+                     + ", ".join(f"mu {friction_bound(angle(rpm), rpm):.2f} at {rpm} rpm" for rpm in (21, 28, 35))
+                     + " (`friction_bound`): every friction scanned would hold it, so the rigid-bed picture does not "
+                     "explain the release ([the slip test](slip_test.md) follows the layer at the wall)."]
+    text = ["# Where the bed lets go of the drum: what sets the release speed", "",
+            "<!-- Generated by `tools/drum/release.py` from docs/drum/release.csv; edit the generator. -->", "",
+            "## Answer", "",
+            "; ".join(answer) + "." + (f" Still to run: {len(todo)} ramps ({', '.join(todo)})." if todo else ""),
+            "", "## Evidence", "",
+            "Each ramp raises the speed by one rpm every 1.76 s (the thesis' ramp) from a carried 21 rpm bed; its "
+            "release is where the bed turn's running median falls below 0.9 for good, read on the ramp clock "
+            "([release.csv](release.csv), [chart](release.png)).", "", *evidence, ""]
+    return "\n".join(text)
+
+
 def scan_period(rows):
     """(period [m], why) for the friction scan: the 12 mm period where its ramp's release (CHECK)
     lies within the 95 % interval of the 24 mm histories' (AGAINST) mean, else the 24 mm period;
@@ -329,6 +469,7 @@ def main(argv=None):
     out = Path(a.out)
     harness.write_csv(out.with_suffix(".csv"), rows, COLUMNS)
     holds = read_holds(Path(a.docs))
+    (out.parent / (out.name + ".md")).write_text(page(rows, holds, carried_angle(Path(a.docs))))
     if holds:
         harness.write_csv(out.parent / (out.name + "_holds.csv"), holds, HOLD_COLUMNS)
         for h in holds:
