@@ -6,7 +6,8 @@ the page that says what changed (docs/drum/error_bars.md).
 For each speed of docs/drum/NAME.csv, each metric's series (docs/drum/NAME/<rpm>rpm/
 series_metrics.csv) over exactly the snapshots the table's average spans: from the steady start
 (the series' end minus the row's average_s, i.e. its start plus settle_s), the last whole
-revolutions of finite values, as `drum_metrics series` batched them. The estimator's mean over
+revolutions of finite values, as `drum_metrics series` batched them; for a row of the estimator's
+stop rule (`steady.py --rule obm`, `batches` nan), every finite value of that window. The estimator's mean over
 them must equal the table's to its printed digits (checked: the error bar belongs to the mean
 printed). Written into the table, every existing column kept as it was: <key>_hw95_<unit> (95 %
 half-width) and <key>_dof (effective degrees of freedom) per metric.
@@ -96,6 +97,8 @@ def window(series, row, column):
         raise ValueError(f"{row['rpm']} rpm: the series' start plus settle_s is not its end minus average_s")
     x = series[column][t >= start - spacing / 2]
     x = x[np.isfinite(x)]
+    if not math.isfinite(float(row.get("batches") or "nan")):
+        return x, spacing  # a row of the estimator's stop rule (steady.py --rule obm): the whole steady window
     batch = max(1, round(60.0 / float(row["rpm"]) / spacing))
     return x[len(x) - len(x) // batch * batch:], spacing
 
