@@ -118,13 +118,21 @@ class Report(unittest.TestCase):
         for name in ("study_thesis", "study_bound"):
             for folder in sorted((drum / name).glob("*rpm")):
                 run = report.harness.read_json(folder / "run.json") if (folder / "run.json").exists() else {}
-                if run.get("outcome") != "done":
+                if run.get("outcome") != "done" and not run.get("earlier_settings"):
                     continue
-                rpm, settings = int(folder.name[:-3]), run["settings"]
+                rpm = int(folder.name[:-3])
+                # the whole-revolution rule it ran under: its own, or for a speed extended since under
+                # another rule (steady.py --extend), the last such it was committed under
+                settings = next((x for x in [run["settings"], *reversed(run.get("earlier_settings", []))]
+                                 if x.get("rule", "revolutions") == "revolutions"), None)
+                if settings is None:
+                    continue
                 series = report.harness.read_csv(folder / "series_metrics.csv")
-                t, verdict = report.time_to_target(series, run, rpm, float(settings["variables"]["dt"]),
-                                                   settings["min_batches"], settings.get("confidence", 0.0))
-                if "note" in run:
+                t, verdict = report.time_to_target(series, {**run, "settings": settings}, rpm,
+                                                   float(settings["variables"]["dt"]), settings["min_batches"],
+                                                   settings.get("confidence", 0.0))
+                if "note" in run or settings is not run["settings"]:
+                    # extended: the rule, replayed where it checks, stopped there or before the longer run's end
                     # a run whose record says it ran other than asked (study_bound's 28 rpm: a segment
                     # ran twice its length, so its driver checked later than the rule would have): the
                     # rule, replayed where it checks, stops there or before, never after
