@@ -6,69 +6,51 @@
 #   bash setup.sh   # once per checkout: the campaign runs the installed binaries
 #   mkdir -p post && nohup setsid tools/drum/campaign.sh >> post/campaign.out 2>&1 &
 #   tools/drum/campaign.sh --checkpoint-now    # before stopping the machine: checkpoint and stop
+#   tools/drum/campaign.sh --plan              # where each step stands: speeds committed, to run, to extend
 #
 # Do not start it while one of its studies runs on its own (steady.py has no lock); two
 # campaigns at once are refused. It runs a copy of the installed binaries (post/campaign-bin), so
 # `bash setup.sh` and the tests may run beside it; a rebuilt model reaches it when it is restarted.
 #
-# 1. The thesis' chain, 7-63 rpm (Table 3.1, tc/5 with exactRestitution, primitive cylinder).
-# 2. A second history of 21 rpm: from 28 rpm's end state (the same carried bed, arrived at from
-#    above), against the chain's 21 rpm with tools/drum/histories.py.
-# 3. The slip test (Fig. 3.5-3.6): the speed raised from 21 rpm one rpm at a time, 1.5 s per speed
-#    (21 -> 28 in 10.5 s: the thesis' ramp took 1e7 steps, about 12 s), from the chain's carried
-#    21 rpm bed with the thesis' table (bead-drum mu 0.95), on to 35 rpm, where the chain's bed no
-#    longer turns with the drum; then with YADE 1.12's conventions (mu 0.5, facet meff m/2, no
-#    attraction; run with the nominal law at tc/10, as exactRestitution then refused the facet mass) from 21 rpm under
-#    them: study_yade's 21 rpm state after 8 s (settled: its four 2 s means of Hc within 0.11 mm),
-#    kept as docs/drum/slip_yade/start_state.restart.gz, so the ramp need not wait for that speed's
-#    averages; study_yade then goes on from the same state to 21 rpm's averages (slip.py's first
-#    YADE row). Under YADE's conventions the bed lets go during 26-27 rpm, so that ramp stops at 28 rpm,
-#    the thesis' ramp's end, which answers the 27 -> 28 rpm step. tools/drum/slip.py reads both
-#    at once. A release speed is one event of one history: so, once study_yade has 21 rpm's steady
-#    end state (later in the same steady flow than the first ramp's start), the same YADE ramp
-#    again from there (slip_yade_replica), a second history of the release. Each slip speed is
-#    one segment: --checkpoint-now keeps nothing of one under way (at most 1.5 s simulated is
-#    redone). The slip question comes first: it is the study's answer.
-# 4. The thesis' chain again from the grid with the stop rule recommended for new studies
-#    (--min-batches 3 --confidence 0.95), first to 35 rpm: the time to the target as the driver
-#    achieves it (the report's figure for it so far is a replay on study_thesis). 7-28 rpm take more
-#    than an hour each, so 35 rpm, the fifth of nine, decides whether the median is within an hour.
-# 5. The timestep comparison at 21 rpm from the chain's 21 rpm state: the thesis' tc/81
-#    (1.23e-6 s, step 7; first, as the reference and the longest run) and tc/20 with the nominal law, to a steady state with the recommended rule's
-#    bound (the standard errors' 95 % bound within the targets) and 5 revolutions at least, as many
-#    as the chain's tc/5 (study_thesis) has: the check runs at the smaller side's degrees of
-#    freedom, and with 3 batches (2 degrees of freedom) it would catch only differences of 17
-#    combined standard errors, with 5 a side 6.9. Each against the chain's tc/5 with
-#    exactRestitution (tools/drum/histories.py --timesteps). Short segments, so a checkpoint loses little.
-# 6. study_yade goes on to 28 and 35 rpm (about 5 hours), each steady YADE speed set against the
-#    thesis' table at that speed (histories.py --conventions: docs/drum/conventions_<rpm>rpm.md):
-#    the thesis' head drops at 28 rpm and rises from 35, the chain's (thesis' table) rises to 28
-#    and drops by 35; do YADE's conventions, whose bed lets go during 26-28 rpm in the ramp, give
-#    the thesis' drop? (tc/81, before it, costs 16 times tc/5 per simulated second: about 15 s
-#    simulated, a day or more of 2 cores.)
-# 7. The drum's wall at 21 rpm, steady, from the chain's 21 rpm state under the thesis' table with
-#    the same rule as 5: the rotating mesh (`wall moving`: facets that keep a contact's history) and
-#    the static mesh with a surface velocity (`wall surface`: a bead's tangential spring restarts at
-#    every facet it crosses), each against the chain's primitive cylinder (histories.py --settings:
-#    docs/drum/walls_21rpm_<wall>.md). The slip question is one of friction at the drum, where the
-#    wall's representation could matter; about 4 hours each (the mesh costs 1.27 times the cylinder).
-# 8. Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
-#    each speed (each starts from a state study_thesis did not pass through), set against
-#    study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
+# The steps, in order (each is explained where it runs, below):
+#  1. The thesis' chain, 7-63 rpm (Table 3.1, tc/5 with exactRestitution, primitive cylinder), and
+#     a second history of 21 rpm from 28 rpm's end state.
+#  2. The slip test (Fig. 3.5-3.6): ramps of one rpm per 1.5 s from a carried 21 rpm bed, with the
+#     thesis' table and with YADE 1.12's conventions, two histories each (tools/drum/slip.py).
+#  3. The chain again from the grid with the bound rule, to 35 rpm (study_bound).
+#  4. The timestep ladder at 21 rpm, each run to the power rule (a 0.1 mm / 0.1 deg difference
+#     found with 80 % power): the nominal law at the thesis' tc/81 (the reference) and tc/20,
+#     exactRestitution at its guard's coarsest step and tc/10, the nominal law at tc/10
+#     (benchmarks/drum_timestep.py).
+#  5. study_thesis extended until each of its averages has 10 effective degrees of freedom
+#     (steady.py --extend; the README's results regenerated with it), then 42 rpm at tc/40 and
+#     tc/20 (capped at 8 s): with 4 they complete the timestep comparison.
+#  6. The release study (tools/drum/release.py, docs/drum/release.md): a 12 mm period check, three
+#     21 rpm start states, ramps at the thesis' 1.76 s per rpm at bead-drum mu 0.5, 0.65, 0.8 and
+#     0.95, holds just below and above the release at mu 0.5 and 0.95, YADE's other conventions
+#     one at a time at mu 0.5, the surface-velocity mesh at mu 0.5 and 0.95 from the same three
+#     start states.
+#  7. The rest of the ladder (the nominal law at tc/40, exactCollision at tc/5 and tc/10) and the
+#     slip ramp 27 -> 35 rpm at tc/20.
+#  8. study_yade's speeds 21-63 under the estimator's rule, each set against the thesis' table
+#     (docs/drum/conventions_<rpm>rpm.md) and the thesis' trend (docs/drum/thesis_trend.md).
+#  9. The drum's wall at 21 rpm (the rotating mesh, the surface-velocity mesh) against the
+#     primitive cylinder; study_bound on to 63 rpm against study_thesis; YADE's 7 and 14 rpm.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 mkdir -p post
 exec 9> post/campaign.lock
-if [[ "${1:-}" != "--checkpoint-now" ]] && ! flock -n 9; then
+if [[ "${1:-}" != "--checkpoint-now" && "${1:-}" != "--plan" ]] && ! flock -n 9; then
   echo "campaign: another campaign is running (post/campaign.lock)"; exit 1
 fi
 py=/usr/bin/python3
 now=()
 if [[ "${1:-}" == "--checkpoint-now" ]]; then now=(--checkpoint-now); fi
+if [[ "${1:-}" == "--plan" ]]; then now=(--dry-run); fi  # each study's plan: runs and commits nothing
 # The campaign runs its own copy of the installed binaries, taken when it starts: `bash setup.sh`
 # (a rebuild, a test run from a clone) rewrites the installed library in place, which would crash
 # a run that has it mapped. So a campaign can go on while the project is rebuilt and tested.
-# (--checkpoint-now runs no simulation and leaves a running campaign's copy alone.)
+# (--checkpoint-now and --plan run no simulation and leave a running campaign's copy alone.)
 if [[ ${#now[@]} -eq 0 ]]; then
   own=post/campaign-bin
   installed=$(dirname "$(command -v liggghts || echo /nonexistent/liggghts)")
@@ -103,7 +85,7 @@ save() {
   done
   echo "campaign: NOT COMMITTED after $k tries (commit them by hand): ${files[*]}"
 }
-# a step whose start state an earlier step has not written yet (only with --checkpoint-now)
+# a step whose start state an earlier step has not written yet (only with --checkpoint-now or --plan)
 ready() { [[ -e "$1" ]] || { echo "campaign: $1 not written yet"; false; }; }
 thesis=(--var dt 2e-5 --var exact on)
 yade=(--var dt 1e-5 --var exact off --var conventions yade)
@@ -111,6 +93,8 @@ slip_speeds=22,23,24,25,26,27,28,29,30,31,32,33,34,35
 yade_slip_speeds=22,23,24,25,26,27,28
 
 steady --name study_thesis "${thesis[@]}" --segment 2 --cap 60
+# A second history of 21 rpm: from 28 rpm's end state (the same carried bed, arrived at from
+# above), against the chain's 21 rpm with tools/drum/histories.py.
 steady --name history_21rpm_from28 --speeds 21 --start-state docs/drum/study_thesis/28rpm/state.restart.gz \
   "${thesis[@]}" --segment 2 --cap 40
 if [[ ${#now[@]} -eq 0 ]]; then
@@ -118,6 +102,21 @@ if [[ ${#now[@]} -eq 0 ]]; then
     --out docs/drum/histories_21rpm.md || echo "campaign: the two histories of 21 rpm disagree, or the comparison failed (above)"
   save "Drum: two histories of 21 rpm at thesis scale" docs/drum/histories_21rpm.md
 fi
+# The slip test (Fig. 3.5-3.6): the speed raised from 21 rpm one rpm at a time, 1.5 s per speed
+# (21 -> 28 in 10.5 s: the thesis' ramp took 1e7 steps, about 12 s), from the chain's carried
+# 21 rpm bed with the thesis' table (bead-drum mu 0.95), on to 35 rpm, where the chain's bed no
+# longer turns with the drum; then with YADE 1.12's conventions (mu 0.5, facet meff m/2, no
+# attraction; run with the nominal law at tc/10, as exactRestitution then refused the facet mass) from 21 rpm under
+# them: study_yade's 21 rpm state after 8 s (settled: its four 2 s means of Hc within 0.11 mm),
+# kept as docs/drum/slip_yade/start_state.restart.gz, so the ramp need not wait for that speed's
+# averages; study_yade then goes on from the same state to 21 rpm's averages (slip.py's first
+# YADE row). Under YADE's conventions the bed lets go during 26-27 rpm, so that ramp stops at 28 rpm,
+# the thesis' ramp's end, which answers the 27 -> 28 rpm step. tools/drum/slip.py reads both
+# at once. A release speed is one event of one history: so, once study_yade has 21 rpm's steady
+# end state (later in the same steady flow than the first ramp's start), the same YADE ramp
+# again from there (slip_yade_replica), a second history of the release. Each slip speed is
+# one segment: --checkpoint-now keeps nothing of one under way (at most 1.5 s simulated is
+# redone). The slip question comes first: it is the study's answer.
 steady --name slip_thesis --speeds "$slip_speeds" --start-state docs/drum/study_thesis/21rpm/state.restart.gz \
   "${thesis[@]}" --segment 1.5 --cap 1.5
 steady --name slip_yade --speeds "$yade_slip_speeds" --start-state docs/drum/slip_yade/start_state.restart.gz \
@@ -156,6 +155,10 @@ if ready docs/drum/history_21rpm_from28/21rpm/state.restart.gz; then
     --start-state docs/drum/history_21rpm_from28/21rpm/state.restart.gz "${thesis[@]}" --segment 1.5 --cap 1.5
 fi
 if [[ ${#now[@]} -eq 0 ]]; then slip_all; fi
+# The thesis' chain again from the grid with the stop rule recommended for new studies
+# (--min-batches 3 --confidence 0.95), first to 35 rpm: the time to the target as the driver
+# achieves it (the report's figure for it so far is a replay on study_thesis). 7-28 rpm take more
+# than an hour each, so 35 rpm, the fifth of nine, decides whether the median is within an hour.
 bound=(--name study_bound "${thesis[@]}" --min-batches 3 --confidence 0.95 --segment 2 --cap 60)
 steady "${bound[@]}" --speeds 7,14,21,28,35
 # one 21 rpm study from the chain's 21 rpm state, steady with 5 revolutions at least and the
@@ -345,6 +348,12 @@ if [[ ${#now[@]} -eq 0 ]]; then
   "$py" tools/drum/thesis_trend.py || echo "campaign: the thesis' trend page failed (above)"
   save "Drum: the thesis' trend beside both steady studies" docs/drum/thesis_trend.md
 fi
+# The drum's wall at 21 rpm, steady, from the chain's 21 rpm state under the thesis' table with
+# the same rule as 5: the rotating mesh (`wall moving`: facets that keep a contact's history) and
+# the static mesh with a surface velocity (`wall surface`: a bead's tangential spring restarts at
+# every facet it crosses), each against the chain's primitive cylinder (histories.py --settings:
+# docs/drum/walls_21rpm_<wall>.md). The slip question is one of friction at the drum, where the
+# wall's representation could matter; about 4 hours each (the mesh costs 1.27 times the cylinder).
 # the drum's wall against the chain's primitive cylinder (a later --var wall overrides steady()'s)
 wall() {
   against_chain "walls_$1" settings "docs/drum/walls_21rpm_$1.md" \
@@ -353,6 +362,9 @@ wall() {
 }
 wall moving
 wall surface
+# Last (as far as compute allows), study_bound on to 63 rpm: from 14 rpm on a second history of
+# each speed (each starts from a state study_thesis did not pass through), set against
+# study_thesis with tools/drum/histories.py (docs/drum/histories_bound/).
 steady "${bound[@]}"
 if [[ ${#now[@]} -eq 0 ]]; then
   mkdir -p docs/drum/histories_bound

@@ -660,6 +660,16 @@ class Study:
         harness.say(WHO, f"{rpm} rpm {outcome}: wrote {out}"
                          f"{' and committed' if a.commit else ''}")
 
+    def under_way(self, rpm):
+        """What is recorded of a speed in progress, for the plan: its segments in post/ or its
+        committed checkpoint, whichever is further on ('' if neither)."""
+        records = [harness.read_json(f) for f in (self.work / f"{rpm}rpm_progress.json",
+                                                  self.partial(rpm) / "progress.json") if f.exists()]
+        if not records:
+            return ""
+        r = max(records, key=lambda x: x["segments"])
+        return f" (under way: {r['segments']} segments, {r['simulated_s']:g} s simulated)"
+
     def refreshed(self):
         """--refresh: runs each command; returns the files of those that succeeded."""
         files = []
@@ -679,8 +689,11 @@ class Study:
         first, first_sha = self.first_state()
         steps = plan(a.speeds, {r: self.committed(r) for r in a.speeds}, self.settings, a.force,
                      self.first_states(first_sha), a.extend)
+        if a.dry_run:
+            harness.say(WHO, f"study {a.name}:")
         for rpm, done in steps:
-            harness.say(WHO, f"plan: {rpm} rpm: {'to extend' if done == 'extend' else 'committed' if done else 'to run'}")
+            harness.say(WHO, f"plan: {rpm} rpm: {'to extend' if done == 'extend' else 'committed' if done else 'to run'}"
+                             f"{self.under_way(rpm) if done is not True else ''}")
         if a.dry_run:
             return 0
         if a.checkpoint_now:
