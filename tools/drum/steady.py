@@ -668,7 +668,7 @@ class Study:
         if not records:
             return ""
         r = max(records, key=lambda x: x["segments"])
-        return f" (under way: {r['segments']} segments, {r['simulated_s']:g} s simulated)"
+        return f" (under way: {r['simulated_s']:g} s simulated)"
 
     def refreshed(self):
         """--refresh: runs each command; returns the files of those that succeeded."""
