@@ -44,18 +44,30 @@ def kill_after_first_segment(cmd, recorded_file):
     return json.loads(recorded_file.read_text())["segments"]
 
 
-class InterruptedStudy(unittest.TestCase):
+class Studies:
+    """A test class's scratch docs/ (self.tmp) and its studies' names (one per KINDS), whose post/
+    folders are removed afterwards."""
+    PREFIX, KINDS = "", ()
+
     @classmethod
     def setUpClass(cls):
-        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_e2e_"))
-        cls.names = [f"e2e_steady_{os.getpid()}_{k}" for k in ("whole", "cut", "clone")]
-        subprocess.run(command(cls.names[0], cls.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
+        cls.tmp = Path(tempfile.mkdtemp(prefix=f"{cls.PREFIX}_"))
+        cls.names = [f"{cls.PREFIX}_{os.getpid()}_{k}" for k in cls.KINDS]
 
     @classmethod
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
         for n in cls.names:
             shutil.rmtree(REPO / "post" / n, ignore_errors=True)
+
+
+class InterruptedStudy(Studies, unittest.TestCase):
+    PREFIX, KINDS = "e2e_steady", ("whole", "cut", "clone")
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        subprocess.run(command(cls.names[0], cls.tmp / "whole"), cwd=REPO, check=True, capture_output=True)
 
     def test_interrupted_and_resumed_gives_the_same_averages(self):
         cut = self.names[1]
@@ -137,21 +149,12 @@ CHAIN = ["--speeds", "21,28", "--period", "0.006", "--var", "fill", "0.05", "--v
          "--var", "dt", "2e-5", "--segment", "0.02", "--settle", "0.02", "--cap", "0.06"]
 
 
-class InterruptedChain(unittest.TestCase):
+class InterruptedChain(Studies, unittest.TestCase):
     """A chain interrupted in its second speed and resumed: the finished first speed is taken from
     docs/ (not run again, not read from post/), the second goes on from its last recorded segment,
     and both speeds' series and averages equal an uninterrupted chain's."""
 
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_chain_e2e_"))
-        cls.names = [f"e2e_chain_{os.getpid()}_{k}" for k in ("whole", "cut")]
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-        for n in cls.names:
-            shutil.rmtree(REPO / "post" / n, ignore_errors=True)
+    PREFIX, KINDS = "e2e_chain", ("whole", "cut")
 
     def test_a_chain_resumed_in_its_second_speed(self):
         whole, cut = self.names
@@ -180,23 +183,14 @@ class InterruptedChain(unittest.TestCase):
 
 
 
-class ExtendedChain(unittest.TestCase):
+class ExtendedChain(Studies, unittest.TestCase):
     """--extend: a committed chain (21 rpm capped after 2 segments, 28 rpm after 3) given a later
     cap runs on from each speed's committed end state, not from the grid; 21 rpm's series then
     equals that of a run capped there in the first place, and 28 rpm, started from 21 rpm's
     earlier end state, is extended too, not redone. A changed stop rule that asks for nothing
     more rewrites the records only."""
 
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = Path(tempfile.mkdtemp(prefix="steady_extend_e2e_"))
-        cls.names = [f"e2e_extend_{os.getpid()}_{k}" for k in ("whole", "ext")]
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-        for n in cls.names:
-            shutil.rmtree(REPO / "post" / n, ignore_errors=True)
+    PREFIX, KINDS = "e2e_extend", ("whole", "ext")
 
     def run_study(self, name, settings, *extra):
         r = subprocess.run(command(name, self.tmp, *extra, settings=settings), cwd=REPO, capture_output=True, text=True)
