@@ -53,6 +53,7 @@ from scipy import stats
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import harness  # noqa: E402
+import estimator  # noqa: E402
 import slip  # noqa: E402
 
 DOCS = harness.REPO / "docs" / "drum"
@@ -259,9 +260,7 @@ def hold_outcome(series, rpm):
         return "released throughout (came in released)"
     if gone is not None and gone[1] == rpm:
         return f"let go {gone[2]:.2f} s into the hold"
-    turns = [s[3] for s in own]
-    smooth = [statistics.median(turns[max(0, k - 2):k + 3]) for k in range(len(turns))]
-    if min(smooth) >= slip.LETS_GO:
+    if min(slip.running_median([s[3] for s in own])) >= slip.LETS_GO:
         return "carried throughout"
     return f"slipping on and off (running median of bed_turn below {slip.LETS_GO:g} at times, back above)"
 
@@ -321,11 +320,10 @@ def welch(a, b, confidence=0.95):
     than 2 a side."""
     if len(a) < 2 or len(b) < 2:
         return (statistics.fmean(a) - statistics.fmean(b) if a and b else math.nan), math.nan
-    va, vb = statistics.variance(a) / len(a), statistics.variance(b) / len(b)
-    if va + vb == 0:
-        return statistics.fmean(a) - statistics.fmean(b), 0.0
-    dof = (va + vb) ** 2 / (va ** 2 / (len(a) - 1) + vb ** 2 / (len(b) - 1))
-    return statistics.fmean(a) - statistics.fmean(b), float(stats.t.ppf(0.5 + confidence / 2.0, dof)) * math.sqrt(va + vb)
+    side = [estimator.Interval(statistics.fmean(x), math.nan, len(x) - 1, math.nan,
+                               statistics.stdev(x) / math.sqrt(len(x))) for x in (a, b)]
+    difference, half_width, _ = estimator.compare(*side, confidence)
+    return difference, half_width
 
 
 def page(rows, holds=(), angle=None):

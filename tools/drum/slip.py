@@ -105,15 +105,20 @@ def ramp_series(docs, name):
     return out
 
 
+def running_median(values, span=5):
+    """Each value's median over the `span` samples centred on it (fewer at the ends): a single
+    sample across a threshold does not move what is read from the series."""
+    half = span // 2
+    return [statistics.median(values[max(0, k - half):k + half + 1]) for k in range(len(values))]
+
+
 def lets_go(series, threshold=LETS_GO, least=4, span=5):
     """Where the bed lets go of the drum along a ramp: (time, rpm, time into that speed) of the
     first sample from which `bed_turn`, as a running median over `span` samples (a single sample
     just above or below the threshold does not move the answer), stays below `threshold` to the
     end, for at least `least` samples; None where it does not. The time into a speed counts from
     the speed's change, the time of the sample before its first."""
-    turns = [s[3] for s in series]
-    half = span // 2
-    smooth = [statistics.median(turns[max(0, k - half):k + half + 1]) for k in range(len(turns))]
+    smooth = running_median([s[3] for s in series], span)
     since = None
     for k, turn in enumerate(smooth):
         since = (since if since is not None else k) if turn < threshold else None
