@@ -157,6 +157,7 @@ private:
         }
         const TypePairTable::CollisionLaws& laws = table.collision(sidata.itype, sidata.jtype);
         const double distance = sidata.is_wall ? 0.0 : 1.0 / sidata.rinv;
+        const TypePairTable::StepInput input{state, sidata.deltan, -sidata.vn, pull, distance};
         const CollisionStep step = exactPairStep(laws.normal, laws.tangential, state, sidata.deltan, -sidata.vn, pull,
                                                  distance, [&] {
             const Vec3 n(sidata.en[0], sidata.en[1], sidata.en[2]);
@@ -168,7 +169,7 @@ private:
         CollisionStep forTangential = step;
         forTangential.friction *= meff;  // as a force [N]
         forTangential.meff = meff;
-        table.setCollisionStep(forTangential, h);
+        table.setCollisionStep(forTangential, h, input);
         return meff * step.force;
     }
 

@@ -101,16 +101,45 @@ public:
             if (e.offPath) e.rateOffset = Vec3(r[0], r[1], r[2]);
             if (e.sliding) e.force = Vec3(r[4], r[5], r[6]);
             const auto& laws = t->collision(sidata.itype, sidata.jtype);
-            const viscoelastic::CollisionStep& step = t->collisionStep();
+            const viscoelastic::CollisionStep* used = &t->collisionStep();
+            double* const c = t->collisionHistory();
+            const viscoelastic::TypePairTable::StepInput& in = t->stepInput();
+            // (a pair's corrector: the normal step again with the next half
+            // step's pull that this step's kicks give, the tangential one
+            // forecast without advancing; the normal force's change goes
+            // with the landing's)
+            viscoelastic::CollisionStep corrected;
+            viscoelastic::CollisionState collision;
+            const bool correct = !sidata.is_wall && viscoelastic::takesPullCorrector(in.before, *used, in.pull);
+            if (correct) {
+                viscoelastic::TangentialState springAhead = state;
+                viscoelastic::ExactTangentialState exactAhead = e;
+                const Vec3 ftAhead = viscoelastic::exactTangentialForce(
+                    springAhead, exactAhead, normal, drive.rate, drive.mass, laws.tangential, laws.normal, *used,
+                    mu * used->meff, limit, false, drive.feed);
+                const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
+                const double pullNext = viscoelastic::nextHalfStepPull(v, in.distance * normal, normal, used->force,
+                                                                       ftAhead / used->meff, laws.normal.dt);
+                collision = in.before;
+                corrected = viscoelastic::exactPairStep(laws.normal, laws.tangential, collision, in.x, in.v, in.pull,
+                                                        in.distance, [&] {
+                    return viscoelastic::PairAtTouch{drive, v - v.dot(normal) * normal, used->meff, mu, sidata.rinv};
+                }, pullNext);
+                corrected.friction *= used->meff, corrected.meff = used->meff;
+                landing = used->meff * (corrected.force - used->force);
+                used = &corrected;
+                if (advance) viscoelastic::storeCollisionState(c, collision);
+            }
+            const viscoelastic::CollisionStep& step = *used;
+            const double stepLimit = correct ? viscoelastic::frictionLimit(mu, step.friction) : limit;
             Vec3 exitChange;
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
-                                                    step, mu * step.meff, limit, advance, drive.feed, &exitChange);
+                                                    step, mu * step.meff, stepLimit, advance, drive.feed, &exitChange);
             if (step.exit.sigma > 0.0) {  // a pair ending within the next step: land on the exit line
-                double* const c = t->collisionHistory();
-                viscoelastic::CollisionState collision = viscoelastic::loadCollisionState(c);
+                if (!correct) collision = viscoelastic::loadCollisionState(c);
                 const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
-                landing = viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
-                                                      drive.mass, exitChange);
+                landing += viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
+                                                       drive.mass, exitChange);
                 if (advance) viscoelastic::storeCollisionState(c, collision);
             }
         } else {

@@ -75,9 +75,19 @@ public:
     // contact ends within the next step), the normal model's history of the
     // contact (phase, previousOffset, previousPull), which the tangential
     // model's landing writes (exitLineForce needs this step's friction).
-    void setCollisionStep(const CollisionStep& s, double* history) const { step_ = s, history_ = history; }
+    // And what the step was taken from, for the pull's corrector
+    // (exactPairStep's pullNext, which the tangential force's kick gives).
+    struct StepInput {
+        CollisionState before;  // the contact's state before the step
+        double x = 0, v = 0, pull = 0, distance = 0;
+    };
+    void setCollisionStep(const CollisionStep& s, double* history, const StepInput& input) const
+    {
+        step_ = s, history_ = history, input_ = input;
+    }
     const CollisionStep& collisionStep() const { return step_; }
     double* collisionHistory() const { return history_; }
+    const StepInput& stepInput() const { return input_; }
 
 private:
     void say(const std::string& report, const std::vector<std::string>& warnings);
@@ -89,6 +99,7 @@ private:
     const void* owner_ = nullptr;
     mutable CollisionStep step_;
     mutable double* history_ = nullptr;
+    mutable StepInput input_;
 
     // What this table printed at its last load, so the report appears once
     // per LAMMPS instance (see say()).

@@ -76,10 +76,23 @@ inline std::optional<Run> steppedPair(const Setup& c)
             const Vec3 vtr = vt - (cr * (wi + wj)).cross(n);
             const double pull = std::max(v.squaredNorm() - v.dot(n) * v.dot(n), 0.0) / d.norm();
             const SpringDrive drive = springDrive(vtr, n, overlap, meff, m, R, cr, wi, m, R, cr, wj);
-            CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), [&] {
-                return PairAtTouch{drive, vt, meff, c.p.mu, 1.0 / d.norm()};
-            });
+            const auto atTouch = [&] { return PairAtTouch{drive, vt, meff, c.p.mu, 1.0 / d.norm()}; };
+            const CollisionState before = state;
+            CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), atTouch);
             s.friction *= meff, s.meff = meff;
+            if (takesPullCorrector(before, s, pull)) {
+                // the corrector: the step again with the next half step's pull
+                // its kicks give (the tangential force forecast, not advanced)
+                TangentialState springAhead = spring;
+                ExactTangentialState exactAhead = exact;
+                const Vec3 ftAhead = exactTangentialForce(springAhead, exactAhead, n, drive.rate, drive.mass, tangential,
+                                                          normal, s, c.p.mu * meff, frictionLimit(c.p.mu, s.friction),
+                                                          false, drive.feed);
+                state = before;
+                s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), atTouch,
+                                  nextHalfStepPull(v, d, n, s.force, ftAhead / meff, dt));
+                s.friction *= meff, s.meff = meff;
+            }
             Vec3 exitChange;
             const Vec3 ft = exactTangentialForce(spring, exact, n, drive.rate, drive.mass, tangential, normal, s,
                                                  c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true, drive.feed,
