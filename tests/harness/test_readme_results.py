@@ -66,6 +66,21 @@ class TimestepParagraph(unittest.TestCase):
         self.assertIn("Provisional: tc/81 is still running (7.4 s", text)
         self.assertIsNone(readme_results.timestep_para(Path(d) / "missing.csv"))
 
+    def test_a_reference_at_its_cap_states_its_half_widths(self):
+        sys.path.insert(0, str(REPO / "tools"))
+        import readme_results
+        table = (self.rows("plain", 81.3, "capped", (True, True), 5000.0) +
+                 self.rows("plain", 20, "done", (True, True), 1600.0))
+        for r in table:
+            r["hw95"] = {"Hc_m": 3.7e-5, "angle_deg": 0.06}.get(r["metric"], 1.0)
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "t.csv"
+            readme_results.harness.write_csv(path, table)
+            text = " ".join(readme_results.timestep_para(path).split())
+        self.assertIn("tc/81 ran to its cap (7.4 s averaged, half-widths 0.037 mm and 0.060° where the 80 % power "
+                      "asks 0.054)", text)
+        self.assertNotIn("Provisional", text)
+
 
 if __name__ == "__main__":
     unittest.main()
