@@ -110,6 +110,8 @@ public:
             // with the landing's)
             viscoelastic::CollisionStep corrected;
             viscoelastic::CollisionState collision;
+            // the centres' relative velocity (the corrector's kicks and the landing start from it)
+            const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
             const bool correct = !sidata.is_wall && viscoelastic::takesPullCorrector(in.before, *used, in.pull);
             if (correct) {
                 viscoelastic::TangentialState springAhead = state;
@@ -117,7 +119,6 @@ public:
                 const Vec3 ftAhead = viscoelastic::exactTangentialForce(
                     springAhead, exactAhead, normal, drive.rate, drive.mass, laws.tangential, laws.normal, *used,
                     mu * used->meff, limit, false, drive.feed);
-                const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
                 const double pullNext = viscoelastic::nextHalfStepPull(v, in.distance * normal, normal, used->force,
                                                                        ftAhead / used->meff, laws.normal.dt);
                 collision = in.before;
@@ -137,7 +138,6 @@ public:
                                                     step, mu * step.meff, stepLimit, advance, drive.feed, &exitChange);
             if (step.exit.sigma > 0.0) {  // a pair ending within the next step: land on the exit line
                 if (!correct) collision = viscoelastic::loadCollisionState(c);
-                const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
                 landing += viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
                                                        drive.mass, exitChange);
                 if (advance) viscoelastic::storeCollisionState(c, collision);

@@ -3,6 +3,7 @@
 // pair, a primitive wall and a mesh wall, with limitForce off and on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -22,6 +23,20 @@ std::vector<double> randomPhases(int n, unsigned seed)
     std::vector<double> p;
     for (int i = 0; i < n; ++i) p.push_back(1.0 - u(g));
     return p;
+}
+
+// The farthest of a pair's runs from the outcome `law` (the same mode at
+// tc/1000): the largest change of the relative velocity or of a spin's
+// contact speed R w, over the incoming speed (pairstepper::apart's measure).
+double worstApart(const std::vector<Trajectory>& runs, const BodyStates& law, const Case& c)
+{
+    double worst = 0.0;
+    for (const Trajectory& t : runs) {
+        const BodyStates& s = t.frames.back();
+        worst = std::max({worst, ((s.v1 - s.v2) - (law.v1 - law.v2)).norm(), c.radius1 * (s.w1 - law.w1).norm(),
+                          c.radius1 * (s.w2 - law.w2).norm()});
+    }
+    return worst / std::hypot(c.normalSpeed, c.tangentialSpeed);
 }
 
 struct Worst {
@@ -529,20 +544,11 @@ TEST(ExactCollision, AGrazingPairIsPulledAsItsOwnKicksGiveInLiggghts)
     c.limitForce = true;
     c.params = {1e-4, 0.23527368273602051, 0.94228151251440029, 48.121930384653723};
     c.normalSpeed = 1.2833319009983311, c.tangentialSpeed = 6.2384890230356431;
-    const double R = c.radius1, speed = std::hypot(c.normalSpeed, c.tangentialSpeed);
     Case fine = c;
     fine.dt = c.params.tc / 1000.0;
     const BodyStates law = runLiggghts(fine, options("pulled_fine", "exactCollision on")).frames.back();
-    std::vector<double> phases;
-    for (int k = 0; k < 16; ++k) phases.push_back((k + 0.5) / 16.0);
     c.dt = c.params.tc / 7.3428064907261374;
-    double worst = 0.0;
-    for (const Trajectory& t : runLiggghts(c, options("pulled", "exactCollision on"), phases)) {
-        const BodyStates& s = t.frames.back();
-        worst = std::max({worst, ((s.v1 - s.v2) - (law.v1 - law.v2)).norm(), R * (s.w1 - law.w1).norm(),
-                          R * (s.w2 - law.w2).norm()});
-    }
-    worst /= speed;
+    const double worst = worstApart(runLiggghts(c, options("pulled", "exactCollision on"), evenPhases(16)), law, c);
     std::printf("a grazing pair whose friction grows, in LIGGGHTS at tc/7.34: worst of 16 phases %.3f %% off tc/1000\n",
                 100.0 * worst);
     EXPECT_LT(worst, 0.01);
@@ -561,22 +567,14 @@ TEST(ExactCollision, ASpringLetsGoWhereTheCapPassesZeroInLiggghts)
     c.params = {1e-4, 0.2097, 0.5817, 3.07e4};
     c.normalSpeed = 1.294, c.tangentialSpeed = 1.243;
     c.spin1 = Vec3(49.9, 1110.2, -1391.8), c.spin2 = Vec3(-579.7, 1228.6, 2886.2);
-    const double R = c.radius1, speed = std::hypot(c.normalSpeed, c.tangentialSpeed);
     Case fine = c;
     fine.dt = c.params.tc / 1000.0;
     const BodyStates law = runLiggghts(fine, options("cap_zero_fine", "exactCollision on")).frames.back();
-    std::vector<double> phases;
-    for (int k = 0; k < 256; ++k) phases.push_back((k + 0.5) / 256.0);
+    const std::vector<double> phases = evenPhases(256);
     for (const double ratio : {7.0, 10.0, 14.0}) {
         c.dt = c.params.tc / ratio;
-        double worst = 0.0;
-        for (const Trajectory& t : runLiggghts(c, options("cap_zero_" + std::to_string(int(ratio)), "exactCollision on"),
-                                               phases)) {
-            const BodyStates& s = t.frames.back();
-            worst = std::max({worst, ((s.v1 - s.v2) - (law.v1 - law.v2)).norm(), R * (s.w1 - law.w1).norm(),
-                              R * (s.w2 - law.w2).norm()});
-        }
-        worst /= speed;
+        const double worst = worstApart(
+            runLiggghts(c, options("cap_zero_" + std::to_string(int(ratio)), "exactCollision on"), phases), law, c);
         std::printf("the spinning pair in LIGGGHTS at tc/%g: worst of 256 phases %.3f %% off tc/1000\n", ratio,
                     100.0 * worst);
         EXPECT_LT(worst, ratio >= 10.0 ? 0.005 : 0.01) << "tc/dt " << ratio;
