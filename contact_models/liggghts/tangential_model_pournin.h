@@ -104,29 +104,28 @@ public:
             const viscoelastic::CollisionStep* used = &t->collisionStep();
             double* const c = t->collisionHistory();
             const viscoelastic::TypePairTable::StepInput& in = t->stepInput();
-            // (a pair's corrector: the normal step again with the next half
-            // step's pull that this step's kicks give, the tangential one
-            // forecast without advancing; the normal force's change goes
+            // (a pair's corrector, correctPull; the normal force's change goes
             // with the landing's)
             viscoelastic::CollisionStep corrected;
             viscoelastic::CollisionState collision;
             // the centres' relative velocity (the corrector's kicks and the landing start from it)
             const Vec3 v(sidata.v_i[0] - sidata.v_j[0], sidata.v_i[1] - sidata.v_j[1], sidata.v_i[2] - sidata.v_j[2]);
-            const bool correct = !sidata.is_wall && viscoelastic::takesPullCorrector(in.before, *used, in.pull);
+            const bool correct =
+                !sidata.is_wall &&
+                viscoelastic::correctPull(
+                    laws.normal, laws.tangential, in.before, collision, *used, corrected, in.x, in.v, in.pull,
+                    in.distance, v, normal,
+                    [&] {
+                        return viscoelastic::PairAtTouch{drive, v - v.dot(normal) * normal, used->meff, mu, sidata.rinv};
+                    },
+                    [&](const viscoelastic::CollisionStep& s) {
+                        viscoelastic::TangentialState springAhead = state;
+                        viscoelastic::ExactTangentialState exactAhead = e;
+                        return viscoelastic::exactTangentialForce(springAhead, exactAhead, normal, drive.rate, drive.mass,
+                                                                  laws.tangential, laws.normal, s, mu * s.meff, limit,
+                                                                  false, drive.feed);
+                    });
             if (correct) {
-                viscoelastic::TangentialState springAhead = state;
-                viscoelastic::ExactTangentialState exactAhead = e;
-                const Vec3 ftAhead = viscoelastic::exactTangentialForce(
-                    springAhead, exactAhead, normal, drive.rate, drive.mass, laws.tangential, laws.normal, *used,
-                    mu * used->meff, limit, false, drive.feed);
-                const double pullNext = viscoelastic::nextHalfStepPull(v, in.distance * normal, normal, used->force,
-                                                                       ftAhead / used->meff, laws.normal.dt);
-                collision = in.before;
-                corrected = viscoelastic::exactPairStep(laws.normal, laws.tangential, collision, in.x, in.v, in.pull,
-                                                        in.distance, [&] {
-                    return viscoelastic::PairAtTouch{drive, v - v.dot(normal) * normal, used->meff, mu, sidata.rinv};
-                }, pullNext);
-                corrected.friction *= used->meff, corrected.meff = used->meff;
                 landing = used->meff * (corrected.force - used->force);
                 used = &corrected;
                 if (advance) viscoelastic::storeCollisionState(c, collision);

@@ -317,9 +317,11 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
     // (Walton's relation is 4 % off at vn 0.1 m/s, vt/vn 4). Compared: en and
     // the change of the contact point's tangential velocity, du. The claim
     // (docs/tests.md), well inside the 0.5 % target at tc/10 and 1 % up to
-    // tc/9: at most 0.1 % (en) and 0.25 % (du) at the coarsest steps, 0.03 %
+    // tc/9: at most 0.1 % (en) and 0.25 % (du) at the coarsest steps, 0.04 %
     // and 0.2 % at tc/10, the steps' own error in sliding (the pull's fall
-    // within a step is not followed).
+    // within a step is not followed; en at tc/10 0.029 % before the phases
+    // whose exit lies 2.0-2.2 steps after the sample before landed on the exit
+    // line, now 0.035 %).
     // Without the pull on the overlap (exactCollisionStep) one phase in six
     // missed en by 7 % at tc/5 (vn 1 m/s): the end step never ran.
     unsigned seed = 400;
@@ -354,7 +356,7 @@ TEST(ExactCollision, EverySingleSlidingPairCollisionFollowsItsLaw)
                 }
                 const bool coarse = ratio < 9.0;
                 EXPECT_LT(worstDu, coarse ? 2.5e-3 : 2e-3) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
-                EXPECT_LT(worstEn, coarse ? 1e-3 : 3e-4) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
+                EXPECT_LT(worstEn, coarse ? 1e-3 : 4e-4) << "limitForce " << limitForce << " vn " << im.vn << " tc/dt " << ratio;
                 std::printf("sliding pair, limitForce %d, en %.1f vn %.1f vt/vn %.0f mu %.1f, tc/dt %.1f: law en %.5f du "
                             "%.5f m/s (Walton %.5f); worst en %.2e, du %.2e\n",
                             limitForce, im.en, im.vn, im.slope, im.mu, ratio, ode.restitution, duLaw,
@@ -527,6 +529,21 @@ TEST(ExactCollision, AGrazingPairLeavesOnItsExitLineInLiggghts)
     EXPECT_LT(worst, 0.0025);
 }
 
+namespace {
+
+// A pair under exactCollision at tc/ratio and n evenly spread phases in
+// LIGGGHTS, its worst against the same at tc/1000 (worstApart).
+double worstOfEvenPhases(Case c, double ratio, const std::string& name, int n)
+{
+    Case fine = c;
+    fine.dt = c.params.tc / 1000.0;
+    const BodyStates law = runLiggghts(fine, options(name + "_fine", "exactCollision on")).frames.back();
+    c.dt = c.params.tc / ratio;
+    return worstApart(runLiggghts(c, options(name, "exactCollision on"), evenPhases(n)), law, c);
+}
+
+}  // namespace
+
 // The pull's corrector in LIGGGHTS (the tangential model `pournin` takes the
 // normal step again with the next half step's pull its kicks give, and adds
 // the change of the normal force): ExactCollision.AGrazingPairIsPulledAsItsOwnKicksGive
@@ -544,12 +561,27 @@ TEST(ExactCollision, AGrazingPairIsPulledAsItsOwnKicksGiveInLiggghts)
     c.limitForce = true;
     c.params = {1e-4, 0.23527368273602051, 0.94228151251440029, 48.121930384653723};
     c.normalSpeed = 1.2833319009983311, c.tangentialSpeed = 6.2384890230356431;
-    Case fine = c;
-    fine.dt = c.params.tc / 1000.0;
-    const BodyStates law = runLiggghts(fine, options("pulled_fine", "exactCollision on")).frames.back();
-    c.dt = c.params.tc / 7.3428064907261374;
-    const double worst = worstApart(runLiggghts(c, options("pulled", "exactCollision on"), evenPhases(16)), law, c);
+    const double worst = worstOfEvenPhases(c, 7.3428064907261374, "pulled", 16);
     std::printf("a grazing pair whose friction grows, in LIGGGHTS at tc/7.34: worst of 16 phases %.3f %% off tc/1000\n",
+                100.0 * worst);
+    EXPECT_LT(worst, 0.01);
+}
+
+// The landing's reach in LIGGGHTS: ExactCollision.AGrazingPairEndingPastTheSampleAfterNextLands
+// (tests/contact_models/test_collision.cpp), its sliding pair, en 0.30, et
+// 0.59, mu 0.92, vt/vn 4.53 at 2.0 m/s, `limitForce off`, tc/5.05, at 16
+// evenly spread phases against the same mode at tc/1000. Landed only where the
+// exit lay within two steps, the core's stepper was 1.50 % off at the worst
+// of those phases, now 0.44 %; LIGGGHTS gives the same. Target: the sweep's.
+TEST(ExactCollision, AGrazingPairEndingPastTheSampleAfterNextLandsInLiggghts)
+{
+    Case c;
+    c.geometry = Geometry::Pair;
+    c.params = {1e-4, 0.3035359177255651, 0.58559942836031209, 0.91506808761436198};
+    c.normalSpeed = 1.9978051606731193, c.tangentialSpeed = 9.0588894808963225;
+    const double worst = worstOfEvenPhases(c, 5.047552792191758, "reach", 16);
+    std::printf("a grazing pair ending past the sample after next, in LIGGGHTS at tc/5.05: worst of 16 phases %.3f %% "
+                "off tc/1000\n",
                 100.0 * worst);
     EXPECT_LT(worst, 0.01);
 }

@@ -80,19 +80,16 @@ inline std::optional<Run> steppedPair(const Setup& c)
             const CollisionState before = state;
             CollisionStep s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), atTouch);
             s.friction *= meff, s.meff = meff;
-            if (takesPullCorrector(before, s, pull)) {
-                // the corrector: the step again with the next half step's pull
-                // its kicks give (the tangential force forecast, not advanced)
+            CollisionStep corrected;
+            const auto forecast = [&](const CollisionStep& step) {
                 TangentialState springAhead = spring;
                 ExactTangentialState exactAhead = exact;
-                const Vec3 ftAhead = exactTangentialForce(springAhead, exactAhead, n, drive.rate, drive.mass, tangential,
-                                                          normal, s, c.p.mu * meff, frictionLimit(c.p.mu, s.friction),
-                                                          false, drive.feed);
-                state = before;
-                s = exactPairStep(normal, tangential, state, overlap, -v.dot(n), pull, d.norm(), atTouch,
-                                  nextHalfStepPull(v, d, n, s.force, ftAhead / meff, dt));
-                s.friction *= meff, s.meff = meff;
-            }
+                return exactTangentialForce(springAhead, exactAhead, n, drive.rate, drive.mass, tangential, normal, step,
+                                            c.p.mu * meff, frictionLimit(c.p.mu, step.friction), false, drive.feed);
+            };
+            if (correctPull(normal, tangential, before, state, s, corrected, overlap, -v.dot(n), pull, d.norm(), v, n,
+                            atTouch, forecast))
+                s = corrected;
             Vec3 exitChange;
             const Vec3 ft = exactTangentialForce(spring, exact, n, drive.rate, drive.mass, tangential, normal, s,
                                                  c.p.mu * meff, frictionLimit(c.p.mu, s.friction), true, drive.feed,

@@ -718,12 +718,13 @@ TEST(ExactCollision, AGrazingPairIsPulledAsItsOwnKicksGive)
 // the exit, but mostly within the step before the end: the end step's kick,
 // which acts in its own sample's frame, is small, so the sample before lands
 // on the exit's line. At the draws' phases 1.24 % and 1.24 % off before, now
-// 0.22 % and 0.37 %. (Not every phase: where the contact ends just before a
-// sample the step before changes vt by more than kLandStepFriction and does
-// not land; the worst of 16 phases stays 1.5 % and 2.2 %, docs/law.md.)
+// 0.22 % and 0.37 %. At the worst of 64 phases (where the contact ends just
+// before a sample, the step before changes vt by 10-15 %, which the landing
+// once refused) 1.56 % and 2.27 %, now 0.29 % and 0.53 %.
 // en 0.19 / et 0.87, mu 1.36, vn 1.81 m/s, vt/vn 4.36, tc/5.82, and en 0.25 /
 // et 0.90, mu 1.81, vn 1.83 m/s, vt/vn 4.88, tc/5.25, limitForce off (draws
-// of the sweep's grazing set). Target: half the sweep's.
+// of the sweep's grazing set). Target: half the sweep's at the draws' phases,
+// the sweep's at every phase.
 TEST(ExactCollision, AGrazingPairLandsWhereTheEndStepsKickIsSmall)
 {
     pairstepper::Setup a, b;
@@ -735,8 +736,34 @@ TEST(ExactCollision, AGrazingPairLandsWhereTheEndStepsKickIsSmall)
         const auto runs = pairstepper::coarseAndFine(c);
         ASSERT_TRUE(runs);
         const double off = pairstepper::apart(runs->coarse, runs->fine, c);
-        std::printf("mu %.3g, tc/%.3g: %.3f %%\n", c.p.mu, c.ratio, 100.0 * off);
+        const auto [worst, at] = worstOfPhases(c, c.ratio, 64);
+        std::printf("mu %.3g, tc/%.3g: %.3f %%, worst of 64 phases %.3f %% (phase %.4f)\n", c.p.mu, c.ratio,
+                    100.0 * off, 100.0 * worst, at);
         EXPECT_LT(off, 0.5 * sweepTarget(c.ratio)) << "mu " << c.p.mu;
+        EXPECT_LT(worst, sweepTarget(c.ratio)) << "mu " << c.p.mu << ", phase " << at;
+    }
+}
+
+// Grazing pairs at tc/5 whose contact ends just past the sample after next:
+// the landing on the exit line was planned and made only for an exit within
+// two steps, so the end step's flight from its sample left the line by the
+// angle it did not sweep: at the worst of 64 phases a sliding pair 1.63 %
+// off, a sticking one 1.16 %; planned to 2.1 steps and landed to 2.2, 0.45 %
+// and 0.64 %. en 0.30 / et 0.59, mu 0.92, vn 2.00 m/s, vt/vn 4.53, tc/5.05,
+// and en 0.27 / et 0.87, mu 4.69, vn 1.47 m/s, vt/vn 4.92, tc/5.13,
+// limitForce off (draws 959 and 901 of the sweep's grazing set, seed 3).
+// Target: the sweep's.
+TEST(ExactCollision, AGrazingPairEndingPastTheSampleAfterNextLands)
+{
+    pairstepper::Setup a, b;
+    a.p = {kTc, 0.3035359177255651, 0.58559942836031209, 0.91506808761436198};
+    a.vn = 1.9978051606731193, a.vt = 9.0588894808963225, a.ratio = 5.047552792191758;
+    b.p = {kTc, 0.26570508212955779, 0.87172505212950657, 4.6855864806639911};
+    b.vn = 1.4715973277803531, b.vt = 7.2341553547560213, b.ratio = 5.133837490785857;
+    for (const pairstepper::Setup& c : {a, b}) {
+        const auto [worst, at] = worstOfPhases(c, c.ratio, 64);
+        std::printf("mu %.3g, tc/%.3g: worst of 64 phases %.3f %% (phase %.4f)\n", c.p.mu, c.ratio, 100.0 * worst, at);
+        EXPECT_LT(worst, sweepTarget(c.ratio)) << "mu " << c.p.mu << ", phase " << at;
     }
 }
 
