@@ -409,7 +409,7 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
     return mt * a;
 }
 
-// Where a pair's contact ends within the next step (normal.exit), the force
+// Where a pair's contact ends in the next step (normal.exit: within kExitPlanned steps), the force
 // along n [N] to add to this step's so that its next sample lands on the
 // continuous exit line (landOnExitLine), and the collision's state for the
 // end step; 0 where it does not land. vt: the centres' relative tangential

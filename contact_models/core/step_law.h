@@ -86,14 +86,18 @@ inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds);
 // landOnExitLine finds (with the pull's change) lies within kExitLanded:
 // between the plan, which takes the pull as constant, and the landed step the
 // end moved by -0.007 to +0.055 step over 9,640 landings of random grazing
-// pairs (benchmarks/pair_sweep.py's grazing set, 16 phases each), and no
-// landed step's end lay more than 1.19 steps on (11,404 landings). Planned
+// pairs (benchmarks/pair_sweep.py's grazing set, 16 phases each); landed
+// ends lie up to 1.2 steps on, and a little past that where the end moved
+// (1.248 the most seen, a sticking pair at tc/8 with limitForce on), so a
+// landed end is looked for to 1.4 steps: 0.15 step of room before a landed
+// binary contact would go on off its continuous motion. Planned
 // and landed only up to 2 steps, a contact ending just past the sample after
 // next was not landed: its end step's flight left the exit line by the angle
 // it did not sweep (a sliding pair at tc/5 1.6 % off at the worst of 64
-// phases, a sticking one 1.2 %); planned up to 2.25 steps, some landed
-// samples went on, and 11 of 820 grazing draws missed (3 before).
-constexpr double kLandedEnd = 1.25, kExitPlanned = 2.1, kExitLanded = 2.2;
+// phases, a sticking one 1.2 %); planned up to 2.25 steps (the landed end
+// looked for to 1.25), some landed samples went on, and 11 of 820 grazing
+// draws missed (3 before).
+constexpr double kLandedEnd = 1.4, kExitPlanned = 2.1, kExitLanded = 2.2;
 
 namespace detail {
 
@@ -164,7 +168,7 @@ struct CollisionState {
     double previousPull = 0;
 };
 
-// A pair whose contact ends within the next step leaves on a straight line
+// A pair whose contact ends in the next step (within kExitPlanned steps of this sample) leaves on a straight line
 // from the continuous exit. The end step's kick acts along its own sample's
 // normal: it puts the flight on the exit's line only from a sample on that
 // line (from the sample on the continuous motion the flight came out turned
@@ -201,7 +205,7 @@ struct CollisionStep {
     double pull = 0, forceNow = 0, forceNext = 0;
     double forceScale = 0;  // the size of forceNow's terms, for comparing it with a forecast
     double meff = 1;  // the mass the caller scales these by (the cap is mu meff |Fn|)
-    ExitPlan exit;    // a pair's contact ending within the next step
+    ExitPlan exit;    // a pair's contact ending in the next step (within kExitPlanned steps)
 };
 
 // A contact first seen with overlap x1 and approach rate v0 touched x1 / v0
@@ -387,15 +391,15 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     double hi = dt, endHi = endAhead;
     bool goesOn = endAhead > law.endMargin * x + law.endPullMargin * pullChange;
     if (landed || (!goesOn && endAhead > law.endMargin * x)) {
-        // (a landed sample ends here unless its end moved on by more than a
-        // quarter step: pushed by other contacts it goes on)
+        // (a landed sample ends here unless its end lies past kLandedEnd:
+        // pushed by other contacts it goes on)
         hi = (landed ? kLandedEnd : 2.0) * dt, endHi = endingAndSlope(law.o.after(now, hi)).first;
         goesOn = endHi > 0.0;
     }
     if (goesOn) {  // on along the continuous motion: the next sample lies on it
         r.force = (vAt - (ahead.x - shift - xAt) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
-        // A pair whose contact ends within the next step: the plan of its
+        // A pair whose contact ends in the next step (within kExitPlanned steps): the plan of its
         // landing on the exit line (landOnExitLine, which the caller runs
         // with this step's friction). Not from a first step, whose state
         // holds the start's offset for the next.

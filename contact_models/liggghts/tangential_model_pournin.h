@@ -135,7 +135,7 @@ public:
             Vec3 exitChange;
             Ft = viscoelastic::exactTangentialForce(state, e, normal, drive.rate, drive.mass, laws.tangential, laws.normal,
                                                     step, mu * step.meff, stepLimit, advance, drive.feed, &exitChange);
-            if (step.exit.sigma > 0.0) {  // a pair ending within the next step: land on the exit line
+            if (step.exit.sigma > 0.0) {  // a pair ending in the next step: land on the exit line
                 if (!correct) collision = viscoelastic::loadCollisionState(c);
                 landing += viscoelastic::exitLineForce(laws.normal, collision, step, v - v.dot(normal) * normal, Ft,
                                                        drive.mass, exitChange);

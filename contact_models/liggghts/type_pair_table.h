@@ -72,7 +72,7 @@ public:
     // pournin`: LIGGGHTS calls the normal and then the tangential model of
     // one contact back to back, so it needs no place in the contact history.
     // With it, where the step plans a landing on the exit line (a pair whose
-    // contact ends within the next step), the normal model's history of the
+    // contact ends in the next step), the normal model's history of the
     // contact (phase, previousOffset, previousPull), which the tangential
     // model's landing writes (exitLineForce needs this step's friction).
     // And what the step was taken from, for the pull's corrector
