@@ -409,31 +409,31 @@ inline Vec3 exactTangentialForce(TangentialState& s, ExactTangentialState& e, co
     return mt * a;
 }
 
-// Where a pair's contact ends in the next step (normal.exit: within kExitPlanned steps), the force
-// along n [N] to add to this step's so that its next sample lands on the
-// continuous exit line (landOnExitLine), and the collision's state for the
-// end step; 0 where it does not land. vt: the centres' relative tangential
-// velocity, ft this step's tangential force, exitChange what
-// exactTangentialForce forecast for the contact point up to the exit. Only
-// where the friction changes vt by at most kLandFriction of itself up to the
-// exit: the end step's tangential kick acts in its own sample's frame, and
-// where it is large the flight departs from the line by more than the
-// landing corrects (over 16,369 random grazing pairs without and as many
-// with spins, misses of the target 10 and 35 without landing, 5 and 29 at
-// 0.03, 8 and 33 at 0.01; landing every pair, the sticking ones' mean error
-// doubled). It lands too where the end step's own part of that change (from
-// after this step's kick to the exit) is at most kLandEndFriction of vt and
-// this step's at most kLandStepFriction: it is the end step's kick that acts
-// in the wrong frame, and a friction that changed vt mostly in this step
-// leaves that kick small (grazing pairs at mu 1.4 and 1.8, tc/5.8 and tc/5.3,
-// 1.24 % off before, 0.22 % and 0.37 % now). Chosen on the worst of 16 start
-// phases of 1,000 grazing draws (seeds 3 and 103), where 0.04 and 0.10 left
-// a sticking pair at tc/5.1 1.1 % off and a sliding one 1.4 % (both not
-// landed); at 0.06 and 0.15 no draw misses (the worst 0.64 and 0.78 of the
-// target, the mean error 0.061 and 0.063 %); at 0.08 and 0.20 none either, the
-// mean 0.066 and 0.067 %; landing every pair, the worst 0.84 and 1.08 and the
-// mean 0.087 and 0.094 %. On seeds 500 and 600 (not used to choose): 4 misses
-// before, up to 1.5 %, none now, the worst 0.80 of the target.
+// Where a pair's contact ends in the next step (normal.exit: within
+// kExitPlanned steps), the force along n [N] to add to this step's so that its
+// next sample lands on the continuous exit line (landOnExitLine), and the
+// collision's state for the end step; 0 where it does not land. vt: the
+// centres' relative tangential velocity, ft this step's tangential force,
+// exitChange what exactTangentialForce forecast for the contact point up to the
+// exit. Only where the friction changes vt by at most kLandFriction of itself
+// up to the exit: the end step's tangential kick acts in its own sample's
+// frame, and where it is large the flight departs from the line by more than
+// the landing corrects (over 16,369 random grazing pairs without and as many
+// with spins, misses of the target 10 and 35 without landing, 5 and 29 at 0.03,
+// 8 and 33 at 0.01; landing every pair, the sticking ones' mean error doubled).
+// It lands too where the end step's own part of that change (from after this
+// step's kick to the exit) is at most kLandEndFriction of vt and this step's at
+// most kLandStepFriction: it is the end step's kick that acts in the wrong
+// frame, and a friction that changed vt mostly in this step leaves that kick
+// small (grazing pairs at mu 1.4 and 1.8, tc/5.8 and tc/5.3, 1.24 % off before,
+// 0.22 % and 0.37 % now). Chosen on the worst of 16 start phases of 1,000
+// grazing draws (seeds 3 and 103), where 0.04 and 0.10 left a sticking pair at
+// tc/5.1 1.1 % off and a sliding one 1.4 % (both not landed); at 0.06 and 0.15
+// no draw misses (the worst 0.64 and 0.78 of the target, the mean error 0.061
+// and 0.063 %); at 0.08 and 0.20 none either, the mean 0.066 and 0.067 %;
+// landing every pair, the worst 0.84 and 1.08 and the mean 0.087 and 0.094 %.
+// On seeds 500 and 600 (not used to choose): 4 misses before, up to 1.5 %, none
+// now, the worst 0.80 of the target.
 constexpr double kLandFriction = 0.03;
 constexpr double kLandEndFriction = 0.06, kLandStepFriction = 0.15;
 inline double exitLineForce(const StepLaw& normalLaw, CollisionState& state, const CollisionStep& normal, const Vec3& vt,

@@ -57,16 +57,16 @@ struct StepLaw {
     // early, 8 % off). The common step tests endX - endMargin (endGoX).
     double endMargin = 0, endGoX = 0, endPullMargin = 0;
     // What ends the contact kExitPlanned steps on (endPlanX x_n + endPlanV
-    // v_{n-1/2} + endPlanA pull): a pair whose contact ends within the next
-    // step lands its next sample on the continuous exit line
-    // (exactCollisionEnds).
+    // v_{n-1/2} + endPlanA pull): a pair whose contact ends in the next step
+    // (within kExitPlanned steps) lands its next sample on the continuous
+    // exit line (exactCollisionEnds).
     double endPlanX = 0, endPlanV = 0, endPlanA = 0;
     // The force's rate one step on along a free motion m (of x + pull / k):
     // rateStepX m.x + rateStepU m.u.
     double rateStepX = 0, rateStepU = 0;
     double inverseDt = 0;
-    // The flows over -dt/2, dt/2, dt and kExitPlanned dt: a contact's start and end
-    // take the motion there without a transcendental evaluation.
+    // The flows over -dt/2, dt/2, dt and kExitPlanned dt: a contact's start
+    // and end take the motion there without a transcendental evaluation.
     FreeOscillator::Flow flowBack{}, flowHalf{}, flowStep{}, flowPlan{};
     // An ended contact whose overlap would take longer than this to close at
     // its rate is held by other contacts (set by stepLaw from binary
@@ -79,24 +79,23 @@ struct StepLaw {
 // which it runs to bound how long an ended binary contact takes to close.
 inline StepLaw stepLaw(double k, double c, double dt, bool forceEnds);
 
-// A pair's sample landed on the exit line (landOnExitLine) ends its contact
-// if the continuous end lies within kLandedEnd steps of it; else, pushed by
-// other contacts, it goes on. The landing is planned where the exit lies
-// within kExitPlanned steps of the sample before, and landed where the exit
+// A pair's sample landed on the exit line (landOnExitLine) ends its contact if
+// the continuous end lies within kLandedEnd steps of it; else, pushed by other
+// contacts, it goes on. The landing is planned where the exit lies within
+// kExitPlanned steps of the sample before, and landed where the exit
 // landOnExitLine finds (with the pull's change) lies within kExitLanded:
 // between the plan, which takes the pull as constant, and the landed step the
 // end moved by -0.007 to +0.055 step over 9,640 landings of random grazing
-// pairs (benchmarks/pair_sweep.py's grazing set, 16 phases each); landed
-// ends lie up to 1.2 steps on, and a little past that where the end moved
-// (1.248 the most seen, a sticking pair at tc/8 with limitForce on), so a
-// landed end is looked for to 1.4 steps: 0.15 step of room before a landed
-// binary contact would go on off its continuous motion. Planned
-// and landed only up to 2 steps, a contact ending just past the sample after
-// next was not landed: its end step's flight left the exit line by the angle
-// it did not sweep (a sliding pair at tc/5 1.6 % off at the worst of 64
-// phases, a sticking one 1.2 %); planned up to 2.25 steps (the landed end
-// looked for to 1.25), some landed samples went on, and 11 of 820 grazing
-// draws missed (3 before).
+// pairs (benchmarks/pair_sweep.py's grazing set, 16 phases each); landed ends
+// lie up to 1.2 steps on, and a little past that where the end moved (1.248 the
+// most seen, a sticking pair at tc/8 with limitForce on), so a landed end is
+// looked for to 1.4 steps: 0.15 step of room before a landed binary contact
+// would go on off its continuous motion. Planned and landed only up to 2 steps,
+// a contact ending just past the sample after next was not landed: its end
+// step's flight left the exit line by the angle it did not sweep (a sliding
+// pair at tc/5 1.6 % off at the worst of 64 phases, a sticking one 1.2 %);
+// planned up to 2.25 steps (the landed end looked for to 1.25), some landed
+// samples went on, and 11 of 820 grazing draws missed (3 before).
 constexpr double kLandedEnd = 1.4, kExitPlanned = 2.1, kExitLanded = 2.2;
 
 namespace detail {
@@ -115,7 +114,8 @@ inline StepLaw stepLawCoefficients(double k, double c, double dt, bool forceEnds
     s.uX = -s.o.lambda + s.o.omega * (co - e) / si;
     s.uV = s.o.omega * e * dt / si;
     const double h = 0.5 * dt;
-    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt), s.flowPlan = s.o.flow(kExitPlanned * dt);
+    s.flowBack = s.o.flow(-h), s.flowHalf = s.o.flow(h), s.flowStep = s.o.flow(dt);
+    s.flowPlan = s.o.flow(kExitPlanned * dt);
     // One step on, by linearity: the motion from (1, uX) and from (0, uV).
     const Motion fromX = s.o.after({1.0, s.uX}, s.flowStep), fromV = s.o.after({0.0, s.uV}, s.flowStep);
     s.endX = s.o.ending(fromX, forceEnds);
@@ -168,8 +168,8 @@ struct CollisionState {
     double previousPull = 0;
 };
 
-// A pair whose contact ends in the next step (within kExitPlanned steps of this sample) leaves on a straight line
-// from the continuous exit. The end step's kick acts along its own sample's
+// A pair whose contact ends in the next step (within kExitPlanned steps of
+// this sample) leaves on a straight line from the continuous exit. The end step's kick acts along its own sample's
 // normal: it puts the flight on the exit's line only from a sample on that
 // line (from the sample on the continuous motion the flight came out turned
 // by the angle it swept to the surface less the one the contact swept: a
@@ -399,8 +399,8 @@ inline CollisionStep heldStep(const StepLaw& law, double x, double v)
     if (goesOn) {  // on along the continuous motion: the next sample lies on it
         r.force = (vAt - (ahead.x - shift - xAt) / dt) / dt - pull;
         r.friction = frictionBetween(law, state, now, start, law.o.after(now, law.flowHalf), from, 0.5 * dt, pull);
-        // A pair whose contact ends in the next step (within kExitPlanned steps): the plan of its
-        // landing on the exit line (landOnExitLine, which the caller runs
+        // A pair whose contact ends in the next step (within kExitPlanned
+        // steps): the plan of its landing on the exit line (landOnExitLine, which the caller runs
         // with this step's friction). Not from a first step, whose state
         // holds the start's offset for the next.
         if (hi == dt && r.sinceStart < 0.0 && distance > 0.0 && pull > 0.0) {
@@ -496,7 +496,8 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
     // and this one define the motion. It costs nine products (five more with a
     // pull, and two square roots) and two comparisons over the plain law;
     // between two spheres three more and a comparison: the step before the
-    // end step (the end within kExitPlanned steps) goes out of line, to plan a landing.
+    // end step (the end within kExitPlanned steps) goes out of line, to plan
+    // a landing.
     if (underWay) {
         const double vUsed = v - state.previousOffset * law.inverseDt;
         if (law.endGoX * x + law.endV * vUsed + law.endA * pull > law.endPullMargin * pullChange &&
@@ -527,11 +528,11 @@ inline CollisionStep exactCollisionStep(const StepLaw& law, CollisionState& stat
 // sample on the exit line of plan p (exactCollisionStep's, whose own force
 // lands it on the continuous motion), and the state the end step then takes
 // (the landed sample's offset from the continuous motion); nullopt where the
-// exit is not past the next sample and within kExitLanded steps, or that sample would not touch. vtBefore,
-// vtAfter: the centres' tangential speed before and after this step's kicks
-// (the friction's included), vtExit: at the continuous exit. The line's
-// angular momentum is dEnd vtExit; the end step's kick, along its sample's
-// normal, keeps the sample's plus what its friction adds.
+// exit is not past the next sample and within kExitLanded steps, or that sample
+// would not touch. vtBefore, vtAfter: the centres' tangential speed before and
+// after this step's kicks (the friction's included), vtExit: at the continuous
+// exit. The line's angular momentum is dEnd vtExit; the end step's kick, along
+// its sample's normal, keeps the sample's plus what its friction adds.
 inline std::optional<double> landOnExitLine(const StepLaw& law, CollisionState& state, const ExitPlan& p,
                                             double vtBefore, double vtAfter, double vtExit)
 {
